@@ -1,0 +1,118 @@
+"""Fixed-step RK4 as a CasADi Function, applied N times with ``mapaccum``.
+
+The final time of a phase is an *input* (``dt = (t_end - t_start) / N``), so
+event times (rail exit, apogee) can be roots and optimisation variables.
+Optional compilation to C with an on-disk cache keyed by the generated
+code's hash (:func:`compile_function`).
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import casadi as ca
+
+
+def rk4_step(rhs: ca.Function, name: str = "rk4") -> ca.Function:
+    """Classical 4th-order Runge–Kutta step ``(x, t, dt, p) -> x_next``.
+
+    Parameters
+    ----------
+    rhs : casadi.Function
+        ``(x, t, p) -> (xdot, ...)``; only the first output is used.
+    """
+    nx = rhs.size1_in(0)
+    np_ = rhs.size1_in(2)
+    sym = ca.SX if rhs.is_a("SXFunction") else ca.MX
+    x = sym.sym("x", nx)
+    t = sym.sym("t")
+    dt = sym.sym("dt")
+    p = sym.sym("p", np_)
+    k1 = rhs(x, t, p)[0]
+    k2 = rhs(x + dt / 2 * k1, t + dt / 2, p)[0]
+    k3 = rhs(x + dt / 2 * k2, t + dt / 2, p)[0]
+    k4 = rhs(x + dt * k3, t + dt, p)[0]
+    x_next = x + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    return ca.Function(name, [x, t, dt, p], [x_next], ["x", "t", "dt", "p"], ["x_next"])
+
+
+def phase_trajectory(step: ca.Function, n_steps: int, name: str) -> ca.Function:
+    """``(x0, t0, t1, p) -> X`` with X (nx x n_steps) the states after each step.
+
+    ``n_steps`` RK4 steps of equal size ``(t1 - t0) / n_steps`` built with
+    ``Function.mapaccum`` (one call node, linear memory, fast VM).
+    """
+    nx = step.size1_in(0)
+    np_ = step.size1_in(3)
+    x = ca.SX.sym("x", nx)
+    k = ca.SX.sym("k")
+    t0 = ca.SX.sym("t0")
+    dt = ca.SX.sym("dt")
+    p = ca.SX.sym("p", np_)
+    body = ca.Function(f"{name}_body", [x, k, t0, dt, p], [step(x, t0 + k * dt, dt, p)])
+    acc = body.mapaccum(f"{name}_acc", n_steps)
+    x0 = ca.MX.sym("x0", nx)
+    t0m = ca.MX.sym("t0")
+    t1m = ca.MX.sym("t1")
+    pm = ca.MX.sym("p", np_)
+    ks = ca.DM(list(range(n_steps))).T
+    dtm = (t1m - t0m) / n_steps
+    states = acc(x0, ks, ca.repmat(t0m, 1, n_steps), ca.repmat(dtm, 1, n_steps), ca.repmat(pm, 1, n_steps))
+    return ca.Function(name, [x0, t0m, t1m, pm], [states], ["x0", "t0", "t1", "p"], ["X"])
+
+
+# ----------------------------------------------------------------------------- JIT
+def default_cache_dir() -> Path:
+    """Where compiled functions are kept: ``$IRONBARK_CACHE_DIR/jit`` or ~/.cache."""
+    base = os.environ.get("IRONBARK_CACHE_DIR")
+    root = Path(base) if base else Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "ironbark"
+    return root / "jit"
+
+
+def compiler_available() -> bool:
+    """True when a C compiler (``$CC`` or gcc/cc) is on PATH."""
+    return _compiler() is not None
+
+
+def _compiler() -> str | None:
+    for cc in (os.environ.get("CC"), "gcc", "cc", "clang"):
+        if cc and shutil.which(cc):
+            return shutil.which(cc)
+    return None
+
+
+def compile_function(func: ca.Function, cache_dir: Path | None = None) -> ca.Function:
+    """C-compiled copy of ``func`` loaded with ``casadi.external``.
+
+    The generated C source is hashed (SHA-256) and the shared library is kept
+    in ``cache_dir`` under that hash, so the second run (same model, same
+    tables) loads it instantly instead of paying the compile again.  Falls
+    back to ``func`` itself (the interpreted VM) when no compiler exists.
+    """
+    cc = _compiler()
+    if cc is None:
+        return func
+    cache = Path(cache_dir) if cache_dir else default_cache_dir()
+    cache.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        cname = f"{func.name()}.c"
+        gen = ca.CodeGenerator(cname, {"with_header": False})
+        gen.add(func)
+        src_path = Path(tmp) / cname
+        gen.generate(str(Path(tmp)) + os.sep)
+        digest = hashlib.sha256(src_path.read_bytes() + ca.__version__.encode()).hexdigest()[:20]
+        lib = cache / f"{func.name()}_{digest}.so"
+        if not lib.exists():
+            tmp_lib = Path(tmp) / lib.name
+            cmd = [cc, "-O2", "-shared", "-fPIC", str(src_path), "-o", str(tmp_lib), "-lm"]
+            proc = subprocess.run(cmd, capture_output=True, text=True)
+            if proc.returncode != 0:
+                return func
+            staged = cache / f".{lib.name}.{os.getpid()}.tmp"
+            shutil.copyfile(tmp_lib, staged)
+            os.replace(staged, lib)          # atomic: never a half-written library
+    return ca.external(func.name(), str(lib))

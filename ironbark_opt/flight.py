@@ -1,0 +1,202 @@
+"""``simulate(...) -> Flight``: one trajectory, numbers, table and summary.
+
+``Flight`` is an immutable result: constructors never simulate; plots are
+functions in :mod:`ironbark_opt.plots`.
+"""
+from __future__ import annotations
+
+import weakref
+from dataclasses import dataclass, field
+from typing import Mapping
+
+import numpy as np
+import pandas as pd
+
+from ironbark_opt import params as params_mod
+from ironbark_opt.dynamics.model import FlightModel, Steps
+from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
+
+_MODELS: dict[int, tuple] = {}
+
+
+def flight_model(setup, steps: Steps | None = None, jit: bool = False) -> FlightModel:
+    """The (cached) :class:`FlightModel` of ``setup``: built once, reused."""
+    key = id(setup)
+    hit = _MODELS.get(key)
+    if hit is not None:
+        ref, model = hit
+        if ref() is setup and model.steps == (steps or Steps()) and model.jit == jit:
+            return model
+    model = FlightModel(setup, steps, jit=jit)
+    _MODELS[key] = (weakref.ref(setup), model)
+    return model
+
+
+@dataclass(frozen=True)
+class Flight:
+    """Result of :func:`simulate`.
+
+    Attributes
+    ----------
+    name : str
+        Rocket name.
+    parameters : dict name -> float
+        The parameter vector flown (SI, radians).
+    summary_values : dict
+        Key figures with unit-suffixed keys (see :meth:`to_dict`).
+    """
+
+    name: str
+    parameters: Mapping[str, float]
+    summary_values: Mapping[str, float]
+    _table: pd.DataFrame = field(repr=False)
+
+    def __repr__(self) -> str:
+        s = self.summary_values
+        return (f"Flight({self.name!r}: apogee {s['apogee_agl_m']:.1f} m AGL at {s['apogee_time_s']:.2f} s, "
+                f"max speed {s['max_speed_mps']:.1f} m/s)")
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """Time series (a copy): one row per integrator sample, SI columns."""
+        return self._table.copy()
+
+    def to_dict(self) -> dict:
+        """Summary with unit-suffixed keys (``apogee_agl_m``, ...) and the parameters."""
+        out = dict(self.summary_values)
+        out["parameters"] = dict(self.parameters)
+        return out
+
+    @property
+    def apogee_agl(self) -> float:
+        """Apogee above ground level [m]."""
+        return self.summary_values["apogee_agl_m"]
+
+    @property
+    def apogee_time(self) -> float:
+        """Time of apogee [s]."""
+        return self.summary_values["apogee_time_s"]
+
+    def summary(self) -> str:
+        """Human-readable summary (a string; nothing is printed)."""
+        s = self.summary_values
+        lines = [
+            f"Flight of {self.name}",
+            f"  apogee             {s['apogee_agl_m']:10.1f} m AGL  ({s['apogee_asl_m']:.1f} m ASL, "
+            f"{s['apogee_agl_m'] / 0.3048:.0f} ft AGL)",
+            f"  time to apogee     {s['apogee_time_s']:10.2f} s",
+            f"  rail exit          {s['rail_exit_speed_mps']:10.2f} m/s at {s['rail_exit_time_s']:.3f} s, "
+            f"static margin {s['static_margin_rail_exit_cal']:.2f} cal",
+            f"  burnout            {s['burnout_time_s']:10.2f} s at {s['burnout_altitude_agl_m']:.1f} m AGL",
+            f"  max speed          {s['max_speed_mps']:10.1f} m/s (Mach {s['max_mach']:.3f}) at "
+            f"{s['max_speed_time_s']:.2f} s",
+            f"  max acceleration   {s['max_acceleration_mps2']:10.1f} m/s^2 ({s['max_acceleration_mps2'] / 9.80665:.1f} g)",
+            f"  max dynamic press. {s['max_dynamic_pressure_Pa'] / 1000:10.2f} kPa",
+            f"  launch mass        {s['launch_mass_kg']:10.3f} kg, static margin at t=0 "
+            f"{s['static_margin_initial_cal']:.2f} cal",
+            f"  apogee drift       {s['apogee_east_m']:10.1f} m east, {s['apogee_north_m']:.1f} m north",
+        ]
+        if "landing_time_s" in s:
+            lines.append(f"  landing            {s['landing_time_s']:10.1f} s, {s['landing_east_m']:.1f} m east, "
+                         f"{s['landing_north_m']:.1f} m north ({s['landing_distance_m']:.1f} m from the rail)")
+        return "\n".join(lines)
+
+
+def _table(model: FlightModel, run: dict) -> pd.DataFrame:
+    t, x, phase, p = run["t"], run["x"], run["phase"], run["p"]
+    y = model.outputs(t, x, phase, p)
+    q = x[6:10]
+    q0, q1, q2, q3 = q
+    # Body axis in L (first column of T_LB): attitude angles for plots.
+    ax_e = q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3
+    ax_n = 2 * (q1 * q2 + q0 * q3)
+    ax_u = 2 * (q1 * q3 - q0 * q2)
+    elev = model.setup.site_elevation
+    data = {
+        "time_s": t, "phase": phase,
+        "x_east_m": x[0], "y_north_m": x[1], "altitude_agl_m": x[2], "altitude_asl_m": x[2] + elev,
+        "vx_b_mps": x[3], "vy_b_mps": x[4], "vz_b_mps": x[5],
+        "q0": q0, "q1": q1, "q2": q2, "q3": q3,
+        "wx_b_radps": x[10], "wy_b_radps": x[11], "wz_b_radps": x[12],
+        "pitch_deg": np.degrees(np.arctan2(ax_u, np.hypot(ax_e, ax_n))),
+        "heading_deg": np.degrees(np.arctan2(ax_e, ax_n)) % 360.0,
+    }
+    for i, name in enumerate(OUTPUT_NAMES):
+        if name == "alpha_rad":
+            data["alpha_deg"] = np.degrees(y[i])
+        elif name == "altitude_asl_m":
+            continue
+        else:
+            data[name] = y[i]
+    return pd.DataFrame(data)
+
+
+def _summary(model: FlightModel, run: dict, df: pd.DataFrame) -> dict:
+    elev = model.setup.site_elevation
+    x_a, x_r = run["x_apogee"], run["x_rail"]
+    rail = df.index[df["time_s"] <= run["t_rail"] + 1e-12][-1]
+    i_vmax = int(df["speed_mps"].values.argmax())
+    burn = df.index[df["time_s"] <= run["t_burnout"] + 1e-12][-1]
+    flying = df["phase"].isin(["rail", "boost", "coast"]).values
+    s = {
+        "apogee_agl_m": float(x_a[2]),
+        "apogee_asl_m": float(x_a[2] + elev),
+        "apogee_time_s": float(run["t_apogee"]),
+        "apogee_east_m": float(x_a[0]),
+        "apogee_north_m": float(x_a[1]),
+        "max_speed_mps": float(df["speed_mps"].iloc[i_vmax]),
+        "max_speed_time_s": float(df["time_s"].iloc[i_vmax]),
+        "max_mach": float(df["mach"][flying].max()),
+        "max_acceleration_mps2": float(df["acceleration_mps2"][flying].max()),
+        "max_dynamic_pressure_Pa": float(df["dynamic_pressure_Pa"][flying].max()),
+        "rail_exit_time_s": float(run["t_rail"]),
+        "rail_exit_speed_mps": float(np.linalg.norm(x_r[3:6])),
+        "static_margin_rail_exit_cal": float(df["static_margin_cal"].iloc[rail]),
+        "static_margin_initial_cal": float(df["static_margin_cal"].iloc[0]),
+        "burnout_time_s": float(run["t_burnout"]),
+        "burnout_altitude_agl_m": float(df["altitude_agl_m"].iloc[burn]),
+        "launch_mass_kg": float(df["mass_kg"].iloc[0]),
+        "site_elevation_m": float(elev),
+    }
+    if "t_landing" in run:
+        xl = run["x_landing"]
+        s.update(landing_time_s=float(run["t_landing"]), landing_east_m=float(xl[0]),
+                 landing_north_m=float(xl[1]), landing_distance_m=float(np.hypot(xl[0], xl[1])))
+    return s
+
+
+def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
+             steps: Steps | None = None, jit: bool = False, descent: bool = False,
+             model: FlightModel | None = None) -> Flight:
+    """Fly ``setup`` to apogee (and optionally to landing).
+
+    Parameters
+    ----------
+    setup : FlightSetup
+        Vehicle, motor, aerodynamics, atmosphere and site
+        (e.g. ``ironbark_opt.vehicle.load_setup("rocket.toml")``).
+    parameters : mapping name -> value, optional
+        Overrides of the nominal parameters (SI, radians), e.g.
+        ``{"ballast_mass": 0.5}``; names from :mod:`ironbark_opt.params`.
+    p : array, optional
+        A full parameter vector instead of ``parameters``.
+    steps : Steps, optional
+        Integrator discretisation.
+    jit : bool
+        Use C-compiled trajectory functions (cached on disk).
+    descent : bool
+        Continue to landing under the setup's parachutes (ballistic if none).
+    model : FlightModel, optional
+        Reuse an already built model.
+
+    Returns
+    -------
+    Flight
+    """
+    model = model or flight_model(setup, steps, jit)
+    if p is None:
+        p = setup.nominal_parameters(**dict(parameters or {}))
+    p = np.asarray(p, dtype=float).ravel()
+    run = model.run(p, descent=descent)
+    df = _table(model, run)
+    return Flight(name=setup.name, parameters=params_mod.to_dict(p), summary_values=_summary(model, run, df),
+                  _table=df)

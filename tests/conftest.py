@@ -1,0 +1,18 @@
+import os
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+TESTS = Path(__file__).parent
+sys.path.insert(0, str(TESTS))           # tests/dynamics_standins.py etc.
+DATA = TESTS / "data"
+
+
+def pytest_configure(config):
+    # Keep the JIT cache and any user cache inside a temp area during tests.
+    if "IRONBARK_CACHE_DIR" not in os.environ:
+        import tempfile
+        os.environ["IRONBARK_CACHE_DIR"] = tempfile.mkdtemp(prefix="ironbark-test-cache-")
