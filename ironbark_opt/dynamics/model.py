@@ -44,14 +44,15 @@ class Steps:
         Target step during the burn (pitch oscillation near max q needs
         <= ~0.02 s for sub-metre apogee accuracy).
     n_coast : int
-        RK4 steps from burnout to the apogee bracket.
+        RK4 steps from burnout to the end of the coast horizon (about the
+        vacuum coast time; steps above ~0.15 s go unstable at max q).
     dt_descent : float [s]
         Step under parachute (and ballistic descent).
     """
 
     n_rail: int = 40
-    dt_boost: float = 0.01
-    n_coast: int = 600
+    dt_boost: float = 0.02
+    n_coast: int = 300
     dt_descent: float = 0.1
 
 
@@ -97,6 +98,10 @@ class FlightModel:
         return travel - (P["rail_length"] - self.setup.rail_exit_offset)
 
     def _build_events(self):
+        ps = ca.SX.sym("p", params.SIZE)
+        P = params.unpack(ps)
+        self._launch = ca.Function("launch", [ps], [self.initial_state(ps),
+                                                    rail_direction_l(P["inclination"], P["heading"])])
         t_r = ca.MX.sym("t_r")
         p = ca.MX.sym("p", params.SIZE)
         g = ca.Function("rail_residual", [t_r, p], [self.rail_residual(t_r, p)])
@@ -111,29 +116,74 @@ class FlightModel:
         self._apex = ca.Function("apex", [x, t, h, ps], [vz, ca.jacobian(vz, h)])
 
     # ------------------------------------------------------------------ numeric
+    def _rail_travel(self, t_r: float, p: np.ndarray, geom) -> tuple[float, np.ndarray]:
+        """(travel along the rail minus the exit distance [m], states) at ``t_r`` [s]."""
+        x0, e, exit_distance = geom
+        X = np.array(self._run["rail"](x0, 0.0, t_r, p))
+        return float(e @ X[0:3, -1]) - exit_distance, X
+
+    def _x0(self, p):
+        return np.array(self._launch(p)[0]).ravel()
+
     def rail_exit(self, p: np.ndarray) -> float:
-        """Rail-exit time [s] for numeric ``p`` (bracket by a scan, then Newton)."""
+        """Rail-exit time [s] for numeric ``p``.
+
+        The root of the same residual the symbolic model's ``rootfinder``
+        uses (rail phase with ``n_rail`` equal steps over ``[0, t_r]``): a
+        first run brackets it and interpolates a guess from its samples,
+        then secant steps (no derivative needed, so it runs on the compiled
+        functions too), with a bracketing Illinois fallback.
+        """
+        exit_distance = p[params.index("rail_length")] - self.setup.rail_exit_offset
+        if exit_distance <= 0:
+            raise InputError(f"rail length {p[params.index('rail_length')]:.3f} m is shorter than the "
+                             f"distance from the nozzle to the rail guide ({self.setup.rail_exit_offset:.3f} m)",
+                             field="rail_length")
+        x0, e = (np.array(v).ravel() for v in self._launch(p))
+        geom = (x0, e, exit_distance)
         burn = float(self.setup.motor.burn_time) * float(p[params.index("burn_time_scale")])
-        t_scan = min(1.0, burn)
-        x0 = self.initial_state(p)
+        lo, g_lo, hi = 0.0, -exit_distance, min(0.5, burn)
         while True:
-            g_end = float(self.rail_residual(t_scan, ca.DM(p)))
-            if g_end > 0:
+            g_hi, X = self._rail_travel(hi, p, geom)
+            if g_hi > 0:
                 break
-            if t_scan >= burn:
+            if hi >= burn:
                 raise InputError("the rocket does not leave the rail before motor burnout: check thrust, "
                                  "mass and rail length", field="rail_length")
-            t_scan = min(2 * t_scan, burn)
-        X = np.array(self._run["rail"](x0, 0, t_scan, p))
-        e = np.array(rail_direction_l(p[params.index("inclination")], p[params.index("heading")])).ravel()
-        travel = e @ X[0:3, :] - (p[params.index("rail_length")] - self.setup.rail_exit_offset)
-        k = int(np.argmax(travel > 0))
-        dt = t_scan / X.shape[1]
-        guess = (k + 1) * dt
-        try:
-            return float(self.rail_exit_root(guess, p))
-        except RuntimeError as err:
-            raise SolverError(f"rail-exit time not found near t = {guess:.3f} s: {err}") from None
+            lo, g_lo, hi = hi, g_hi, min(2 * hi, burn)
+        travel = np.concatenate([[g_lo], e @ X[0:3, :] - exit_distance]) if lo == 0 else None
+        if travel is not None:
+            k = int(np.argmax(travel > 0))
+            dt = hi / (travel.size - 1)
+            t_a = (k - 1) * dt + dt * (-travel[k - 1]) / (travel[k] - travel[k - 1])
+            t_b = t_a * (1 + 1e-4)
+            g_a = self._rail_travel(t_a, p, geom)[0]
+            for _ in range(8):                      # secant from the interpolated guess
+                if abs(g_a) < 1e-10:
+                    return t_a
+                g_b = self._rail_travel(t_b, p, geom)[0]
+                if g_b == g_a:
+                    break
+                t_a, g_a, t_b = t_b, g_b, t_b - g_b * (t_b - t_a) / (g_b - g_a)
+                if not lo <= t_b <= hi:
+                    break
+        side = 0                                    # Illinois regula falsi fallback
+        for _ in range(60):
+            t = hi - g_hi * (hi - lo) / (g_hi - g_lo)
+            g = self._rail_travel(t, p, geom)[0]
+            if abs(g) < 1e-10 or hi - lo < 1e-12:
+                return t
+            if g > 0:
+                hi, g_hi = t, g
+                if side == 1:
+                    g_lo *= 0.5
+                side = 1
+            else:
+                lo, g_lo = t, g
+                if side == -1:
+                    g_hi *= 0.5
+                side = -1
+        raise SolverError(f"rail-exit time did not converge (bracket {lo:.6f}..{hi:.6f} s)")
 
     def run(self, p, *, descent: bool = False) -> dict:
         """Fly numerically to apogee (optionally to landing).
@@ -153,7 +203,7 @@ class FlightModel:
         p = np.asarray(p, dtype=float).ravel()
         if p.size != params.SIZE:
             raise InputError(f"parameter vector has {p.size} entries, expected {params.SIZE}")
-        x0 = np.array(self.initial_state(p)).ravel()
+        x0 = self._x0(p)
         t_r = self.rail_exit(p)
         t_b = float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
         if t_r >= t_b:
@@ -166,11 +216,17 @@ class FlightModel:
         vz_b = float(self.vz_l(x_b))
         if vz_b <= 0:
             raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs")
-        t_end = t_b + 1.2 * vz_b / G0 + 2.0
-        X_coast = np.array(self._run["coast"](x_b, t_b, t_end, p))
-        vz = np.array(self.vz_l.map(X_coast.shape[1])(X_coast)).ravel()
-        below = np.nonzero(vz <= 0)[0]
-        if below.size == 0:
+        # Drag only shortens the coast below the vacuum time v_z / g; the margin
+        # covers gravity falling off with height.
+        t_end = t_b + vz_b / G0 + 2.0
+        for _ in range(3):
+            X_coast = np.array(self._run["coast"](x_b, t_b, t_end, p))
+            vz = np.array(self.vz_l.map(X_coast.shape[1])(X_coast)).ravel()
+            below = np.nonzero(vz <= 0)[0]
+            if below.size:
+                break
+            t_end = t_b + 1.5 * (t_end - t_b)
+        else:
             raise SolverError("apogee not reached within the coast horizon")
         k = int(below[0])
         dt_c = (t_end - t_b) / self.steps.n_coast
@@ -189,6 +245,98 @@ class FlightModel:
         if descent:
             out.update(self._descend(t_a, x_a, p, t, x, phase))
         return out
+
+    # ------------------------------------------------------------------ batches
+    def _mapped(self, key, n):
+        cache = self.__dict__.setdefault("_map_cache", {})
+        if (key, n) not in cache:
+            base = {"launch": self._launch, "apex": self._apex, "vz": self.vz_l,
+                    "step": self.step["coast"]}.get(key) or self._run[key]
+            cache[(key, n)] = base.map(n, "thread", 2) if key in self._run else base.map(n)
+        return cache[(key, n)]
+
+    def run_batch(self, P: np.ndarray) -> dict:
+        """Fly many parameter vectors at once to apogee (the Monte Carlo path).
+
+        The same phase Functions as :meth:`run`, mapped over the columns of
+        ``P`` (``params.SIZE`` x n, threads); the events (rail exit, apogee)
+        are solved for all samples together by the same methods as in
+        :meth:`run`.
+
+        Returns
+        -------
+        dict of arrays (n,): ``apogee_agl`` [m], ``t_apogee`` [s],
+        ``t_rail`` [s], ``rail_exit_speed`` [m/s], ``t_burnout`` [s], and
+        ``x_apogee`` (13, n).
+        """
+        P = np.asarray(P, dtype=float)
+        if P.ndim != 2 or P.shape[0] != params.SIZE:
+            raise InputError(f"parameter matrix must be {params.SIZE} x n, got {P.shape}")
+        n = P.shape[1]
+        idx = np.arange(n)
+        x0, e = (np.array(v) for v in self._mapped("launch", n)(P))
+        exit_distance = P[params.index("rail_length")] - self.setup.rail_exit_offset
+        if np.any(exit_distance <= 0):
+            raise InputError("rail length shorter than the nozzle-to-guide distance in some samples",
+                             field="rail_length")
+        burn = float(self.setup.motor.burn_time) * P[params.index("burn_time_scale")]
+        rail, nr = self._mapped("rail", n), self.steps.n_rail
+
+        def travel(t):
+            # mapped outputs are blocks of nr columns per sample: (13, n, nr)
+            X = np.array(rail(x0, 0.0, t[None, :], P)).reshape(13, n, nr)
+            return np.einsum("in,inj->nj", e, X[0:3]) - exit_distance[:, None], X
+
+        hi = np.minimum(0.5, burn)
+        for _ in range(10):
+            trav, X = travel(hi)
+            grow = trav[:, -1] <= 0
+            if not grow.any():
+                break
+            if np.any(grow & (hi >= burn)):
+                raise InputError("some samples do not leave the rail before motor burnout", field="rail_length")
+            hi = np.where(grow, np.minimum(2 * hi, burn), hi)
+        trav = np.concatenate([-exit_distance[:, None], trav], axis=1)
+        k = np.argmax(trav > 0, axis=1)
+        dt = hi / nr
+        t_a = (k - 1 + (-trav[idx, k - 1]) / (trav[idx, k] - trav[idx, k - 1])) * dt
+        t_b = t_a * (1 + 1e-4)
+        g_a = travel(t_a)[0][:, -1]
+        for _ in range(10):                       # secant, all samples together
+            if np.all(np.abs(g_a) < 1e-10):
+                break
+            g_b = travel(t_b)[0][:, -1]
+            done = (np.abs(g_b) < 1e-10) | (g_b == g_a)
+            t_new = np.where(done, t_b, t_b - g_b * (t_b - t_a) / np.where(done, 1.0, g_b - g_a))
+            t_a, g_a, t_b = t_b, g_b, t_new
+        if np.any(np.abs(g_a) > 1e-6):
+            raise SolverError("rail exit did not converge for some samples")
+        t_r = t_a
+        x_r = travel(t_r)[1][:, :, -1]
+        nb = self.n_boost
+        x_b = np.array(self._mapped("boost", n)(x_r, t_r[None, :], burn[None, :], P)).reshape(13, n, nb)[:, :, -1]
+        vz_b = np.array(self._mapped("vz", n)(x_b)).ravel()
+        t_end = burn + vz_b / G0 + 2.0
+        nc = self.steps.n_coast
+        Xc = np.array(self._mapped("coast", n)(x_b, burn[None, :], t_end[None, :], P)).reshape(13, n, nc)
+        vz = np.array(self._mapped("vz", n * nc)(Xc.reshape(13, n * nc))).reshape(n, nc)
+        below = vz <= 0
+        if not np.all(below.any(axis=1)):
+            raise SolverError("apogee not reached within the coast horizon for some samples")
+        kc = np.argmax(below, axis=1)
+        dtc = (t_end - burn) / nc
+        x_k = np.where(kc[None, :] == 0, x_b, Xc[:, idx, np.maximum(kc - 1, 0)])
+        t_k = burn + kc * dtc
+        vz_k = np.where(kc == 0, vz_b, vz[idx, np.maximum(kc - 1, 0)])
+        vz_end = vz[idx, kc]
+        h = dtc * vz_k / np.where(vz_k != vz_end, vz_k - vz_end, 1.0)
+        apex = self._mapped("apex", n)
+        for _ in range(8):                        # Newton on the step length, all samples
+            val, der = (np.array(v).ravel() for v in apex(x_k, t_k[None, :], h[None, :], P))
+            h = np.clip(h - val / np.where(der == 0, 1.0, der), 0.0, dtc)
+        x_a = np.array(self._mapped("step", n)(x_k, t_k[None, :], h[None, :], P))
+        return dict(apogee_agl=x_a[2], t_apogee=t_k + h, t_rail=t_r,
+                    rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
 
     @staticmethod
     def _newton_in_step(func, x_k, t_k, dt, p, vz_k):

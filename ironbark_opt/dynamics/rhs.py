@@ -184,4 +184,6 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
         m, x_cg, (cp_x - x_cg) / dref, thrust, axial, normal, s["re"], ca_coef, cn_coef, cp_x,
         (s["t_l"] @ v_b)[2],
     )
+    # Common-subexpression elimination: the aero pieces share many terms.
+    xdot, y = ca.cse(xdot), ca.cse(y)
     return ca.Function(f"rhs_{phase}", [x, t, p], [xdot, y], ["x", "t", "p"], ["xdot", "y"])

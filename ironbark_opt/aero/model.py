@@ -1,0 +1,241 @@
+"""The assembled aerodynamic model the flight core evaluates at every step.
+
+Sources, in order of precedence for each coefficient:
+
+- **Axial force CA**: an :class:`AeroTable`'s ``CA`` (``CA_power_on`` while
+  the motor burns, when the table has it), plus the skin friction and base
+  drag the table does not include (its ``includes`` metadata says which);
+  without a table: friction + base drag only, which misses pressure/wave
+  drag, so :func:`build_aero_model` refuses that (a table or drag curve is
+  required).
+- **Normal force CN and pitching moment Cm**: the table's ``CN``/``Cm`` when
+  present; otherwise the Barrowman baseline (:mod:`.barrowman`) with
+  ``CN = CN_alpha(M) sin(alpha)`` plus Galejs' body lift
+  ``K (A_plan/A_ref) sin^2(alpha)`` (Galejs, "Wind instability — what
+  Barrowman left out", NAR Sentinel 39; Niskanen 2013, eq. 3.26) so the
+  normal force stays physical at large angles of attack near apogee.
+- **Damping**: pitch/yaw ``Cmq`` about the current CG and roll ``Clp`` and
+  cant forcing from :mod:`.damping`, always from geometry.
+
+All methods are symbolic-safe; the flight core calls them with CasADi SX.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ironbark_opt import _math as m
+from ironbark_opt.aero import barrowman, damping
+from ironbark_opt.aero.base_drag import BaseDrag
+from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
+from ironbark_opt.errors import InputError
+
+_ALPHA_CP = math.radians(0.5)   # [rad] angle at which a table's CP is read
+
+
+@dataclass(frozen=True)
+class FinGeometry:
+    """What roll forcing/damping need of one fin set."""
+
+    planform: barrowman.FinPlanform
+    count: int
+    x_root_le: float
+    body_radius: float
+    cant: float
+
+
+@dataclass(frozen=True)
+class LiftGeometry:
+    """Barrowman inputs: body components (Mach-independent) and fin sets."""
+
+    bodies: tuple            # of barrowman.Lift
+    fins: tuple              # of FinGeometry
+    planform_area: float     # [m^2] body side projection, for Galejs' body lift
+    planform_centroid_x: float  # [m]
+
+    def components(self, mach, reference_area: float):
+        """Barrowman Lift components at ``mach`` (symbolic-safe)."""
+        comps = list(self.bodies)
+        for f in self.fins:
+            comps.append(barrowman.fins(f.planform, f.count, f.x_root_le, f.body_radius,
+                                        reference_area, mach))
+        return comps
+
+
+@dataclass(frozen=True)
+class AeroModel:
+    """Coefficients for the dynamics (see module docstring).
+
+    Parameters
+    ----------
+    reference_area : float [m^2]
+    reference_length : float [m]
+    moment_reference_x : float [m]
+        Point Cm is given about, aft of the nose tip.
+    lift : LiftGeometry
+    table : AeroTable or None
+    friction : FrictionDrag or None
+        Added to CA unless the table includes friction.
+    base : BaseDrag or None
+        Added to CA unless the table includes base drag.
+    """
+
+    reference_area: float
+    reference_length: float
+    moment_reference_x: float
+    lift: LiftGeometry
+    table: object = None
+    friction: FrictionDrag | None = None
+    base: BaseDrag | None = None
+    body_lift_k: float = 1.1
+    includes: tuple = field(default=())
+
+    # -- axial ------------------------------------------------------------------
+    def axial(self, mach, alpha, reynolds_per_m, power_on: bool):
+        """CA [-] (positive rearward)."""
+        ca_coef = 0.0 * mach
+        t = self.table
+        if t is not None and t.has("CA"):
+            name = "CA_power_on" if (power_on and t.has("CA_power_on")) else "CA"
+            ca_coef = ca_coef + t.symbolic(name, mach, alpha)
+        if self.friction is not None and "friction" not in self.includes:
+            ca_coef = ca_coef + self.friction.CA(mach, reynolds_per_m)
+        if self.base is not None and "base" not in self.includes:
+            ca_coef = ca_coef + (self.base.CA_power_on(mach) if power_on else self.base.CA_power_off(mach))
+        return ca_coef
+
+    # -- normal force and moment -------------------------------------------------
+    def _barrowman(self, mach, alpha):
+        comps = self.lift.components(mach, self.reference_area)
+        cna, x_cp = barrowman.total(comps)
+        s = m.sin(alpha)
+        cn_lin = cna * s
+        cn_body = self.body_lift_k * self.lift.planform_area / self.reference_area * s * s
+        cn = cn_lin + cn_body
+        d = self.reference_length
+        cm = -(cn_lin * (x_cp - self.moment_reference_x)
+               + cn_body * (self.lift.planform_centroid_x - self.moment_reference_x)) / d
+        return cn, cm, x_cp
+
+    def normal(self, mach, alpha):
+        """(CN, Cm about ``moment_reference_x``) [-]."""
+        t = self.table
+        if t is not None and t.has("CN") and t.has("Cm"):
+            return t.symbolic("CN", mach, alpha), t.symbolic("Cm", mach, alpha)
+        cn, cm, _ = self._barrowman(mach, alpha)
+        return cn, cm
+
+    def coefficients(self, mach, alpha, reynolds_per_m, power_on: bool):
+        """(CA, CN, Cm) at Mach [-], total angle of attack [rad], Re per metre [1/m]."""
+        cn, cm = self.normal(mach, alpha)
+        return self.axial(mach, alpha, reynolds_per_m, power_on), cn, cm
+
+    def center_of_pressure(self, mach, alpha):
+        """CP [m aft of the nose tip] at small angle of attack (for static margin)."""
+        t = self.table
+        if t is not None and t.has("CN") and t.has("Cm"):
+            a = m.fmax(alpha, _ALPHA_CP)
+            cn, cm = t.symbolic("CN", mach, a), t.symbolic("Cm", mach, a)
+            return self.moment_reference_x - self.reference_length * cm / cn
+        return barrowman.total(self.lift.components(mach, self.reference_area))[1]
+
+    # -- damping ----------------------------------------------------------------
+    def pitch_damping(self, mach, x_cg):
+        """Cmq about the current CG [-/rad] (rate nondimensionalised by d/2V)."""
+        comps = self.lift.components(mach, self.reference_area)
+        return damping.pitch_damping_cmq(comps, x_cg, self.reference_length)
+
+    def roll_coefficients(self, mach):
+        """(Cl from fin cant [-], Clp [-/rad]) summed over fin sets."""
+        forcing, clp = 0.0 * mach, 0.0 * mach
+        for f in self.lift.fins:
+            args = (f.planform, f.count, f.body_radius, self.reference_area, self.reference_length, mach)
+            if f.cant != 0.0:
+                forcing = forcing + f.cant * damping.roll_forcing_cl_delta(*args)
+            clp = clp + damping.roll_damping_clp(*args)
+        return forcing, clp
+
+
+# ----------------------------------------------------------------------------- assembly
+def lift_geometry(rocket) -> LiftGeometry:
+    """Barrowman inputs from a :class:`~ironbark_opt.rocket.Rocket` (numeric-only)."""
+    from ironbark_opt.rocket.body import BodyTube, Transition
+    from ironbark_opt.rocket.fins import TrapezoidalFins
+    from ironbark_opt.rocket.nose import NoseCone
+
+    aref = rocket.reference_area()
+    bodies = []
+    plan_area, plan_moment = 0.0, 0.0
+    for comp in rocket.body_components():
+        if isinstance(comp, NoseCone):
+            bodies.append(barrowman.nose_cone(comp.length, comp.radius, aref, volume=comp.volume(),
+                                              x_tip=comp.x))
+        elif isinstance(comp, Transition):
+            bodies.append(barrowman.transition(comp.x, comp.length, comp.fore_radius, comp.aft_radius,
+                                               aref, volume=comp.volume()))
+        elif not isinstance(comp, BodyTube):
+            raise InputError(f"no Barrowman model for component '{comp.name}'", field="component")
+        a = comp.planform_area()
+        plan_area += a
+        plan_moment += a * (comp.x + 0.5 * comp.length)
+    fins = []
+    for fs in rocket.fin_sets():
+        pts = np.asarray(fs.planform_points())
+        if isinstance(fs, TrapezoidalFins):
+            plan = barrowman.trapezoid_planform(fs.root_chord, fs.tip_chord, fs.span, fs.sweep_length)
+        else:
+            plan = barrowman.polygon_planform(pts)
+        r_body = float(rocket.radius_at(fs.x + 0.5 * float(pts[-1, 0])))   # at mid root chord
+        fins.append(FinGeometry(plan, fs.count, fs.x, r_body, fs.cant))
+    if not bodies and not fins:
+        raise InputError("the rocket has no nose, transition or fins: no normal force", field="components")
+    return LiftGeometry(tuple(bodies), tuple(fins), plan_area, plan_moment / plan_area if plan_area else 0.0)
+
+
+def friction_components(rocket, roughness: float) -> list[FrictionComponent]:
+    """Skin-friction components: the whole body as one run, each fin set."""
+    bodies = rocket.body_components()
+    length = rocket.length()
+    wetted = sum(c.wetted_area() for c in bodies)
+    comps = [FrictionComponent.body("body", length, 2 * rocket.max_radius(), wetted_area=wetted,
+                                    roughness=roughness)]
+    for fs in rocket.fin_sets():
+        comps.append(FrictionComponent.fins(fs.name, fs.wetted_area(), fs.mean_aerodynamic_chord(),
+                                            fs.thickness, roughness=roughness))
+    return comps
+
+
+def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re_transition: float = 5e5,
+                     jet_area: float = 0.0) -> AeroModel:
+    """Assemble the model of ``rocket`` (numeric-only; the result is symbolic-safe).
+
+    Parameters
+    ----------
+    rocket : Rocket
+    table : AeroTable or None
+        Required for CA (drag curves or a panel/CFD table).
+    surface_roughness : float [m]
+    re_transition : float [-]
+    jet_area : float [m^2]
+        Nozzle exit area filling the base while the motor burns.
+    """
+    if table is None or not table.has("CA"):
+        raise InputError("no axial-force data: give drag curves ([aero] drag_power_off) or an aerodynamic "
+                         "table ([aero] table, e.g. from 'ironbark aero build')", field="aero")
+    aref = rocket.reference_area()
+    dref = 2 * rocket.reference_radius()
+    if abs(table.reference_area - aref) > 1e-6 * aref:
+        raise InputError(f"table reference area {table.reference_area:.6g} m^2 differs from the rocket's "
+                         f"{aref:.6g} m^2", field="aero.table")
+    includes = tuple(table.includes)
+    friction = None
+    if "friction" not in includes:
+        friction = FrictionDrag(friction_components(rocket, surface_roughness), aref, re_transition)
+    base = None
+    if "base" not in includes:
+        r_base = float(rocket.radius_at(rocket.length()))
+        base = BaseDrag(math.pi * r_base ** 2, aref, jet_area)
+    return AeroModel(aref, dref, float(table.moment_reference_x), lift_geometry(rocket), table,
+                     friction, base, includes=includes)

@@ -1,0 +1,154 @@
+"""From a rocket file (TOML) to a ready-to-fly :class:`FlightSetup`.
+
+This is the one place that turns the specs a file describes (motor file and
+overrides, aerodynamic inputs, launch site, recovery, ballast) into the
+model objects the flight core uses.  The OpenRocket importer produces the
+same :class:`~ironbark_opt.rocket.toml_io.RocketFile`, so both formats fly
+through here.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+
+from ironbark_opt.aero.model import build_aero_model
+from ironbark_opt.atmosphere.isa import ISA
+from ironbark_opt.dynamics.setup import DryMass, FlightSetup, Parachute
+from ironbark_opt.errors import InputError
+
+#: How the rail length is measured (``rail_exit`` launch option).
+RAIL_EXIT_RULES = ("forward_button", "aft_button", "travel")
+
+
+def load_motor_for(spec):
+    """The motor a :class:`MotorSpec` names, with its overrides applied."""
+    from ironbark_opt.motors import load_motor
+    from ironbark_opt.motors.grains import Grains
+
+    motor = load_motor(spec.file, spec.designation)
+    overrides = dict(spec.overrides)
+    if "grains" in overrides and isinstance(overrides["grains"], dict):
+        overrides["grains"] = Grains(**overrides["grains"])
+    if "grains" in overrides and "propellant_mass" not in overrides:
+        # The file's header mass describes the catalogue motor; the user's
+        # grain geometry is the better number for their propellant load.
+        overrides["propellant_mass"] = overrides["grains"].mass
+    if "dry_inertia" in overrides:
+        overrides["dry_inertia"] = tuple(overrides["dry_inertia"])
+    if overrides:
+        try:
+            motor = dataclasses.replace(motor, **overrides)
+        except TypeError as err:
+            raise InputError(f"motor override not accepted: {err}", source=spec.file, field="motor.overrides") from None
+    return motor
+
+
+def load_aero_table(aero_spec, rocket):
+    """The AeroTable an :class:`AeroSpec` names: a table file or drag curves."""
+    from ironbark_opt.aero.importers import from_cd_mach_csv
+    from ironbark_opt.aero.table import AeroTable
+
+    if aero_spec.table is not None:
+        return AeroTable.load(aero_spec.table)
+    if aero_spec.drag_power_off is not None:
+        return from_cd_mach_csv(aero_spec.drag_power_off, aero_spec.drag_power_on,
+                                reference_area=rocket.reference_area(),
+                                reference_length=2 * rocket.reference_radius())
+    return None
+
+
+def rail_exit_offset(rocket, nozzle_x: float, rule: str) -> float:
+    """Distance [m] subtracted from the rail length to get the travel to rail exit.
+
+    ``forward_button``: the rocket is free when its forward rail button passes
+    the rail's top end, the nozzle starting at the rail's foot (RocketPy's
+    rule, its ``effective_1rl``); ``aft_button``: when the aft button leaves
+    (guided as long as any button is on the rail); ``travel``: after travelling
+    the full rail length (OpenRocket's launch-rod length).
+    """
+    if rule not in RAIL_EXIT_RULES:
+        raise InputError(f"rail_exit must be one of {', '.join(RAIL_EXIT_RULES)}, got {rule!r}",
+                         field="rail_exit")
+    if rule == "travel":
+        return 0.0
+    guides = rocket.rail_guides()
+    if guides is None:
+        return 0.0
+    fwd, aft = min(guides), max(guides)
+    return abs(nozzle_x - (fwd if rule == "forward_button" else aft))
+
+
+def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
+                    pressure_correction: bool = True) -> FlightSetup:
+    """Assemble a :class:`FlightSetup` from a loaded :class:`RocketFile`.
+
+    Parameters
+    ----------
+    rf : RocketFile
+    rail_exit : str
+        See :func:`rail_exit_offset`.
+    atmosphere : Atmosphere, optional
+        Replaces the file's standard atmosphere (e.g. a forecast profile).
+    pressure_correction : bool
+        Apply the ambient-pressure thrust correction when the motor's nozzle
+        exit area is known.
+    """
+    motor = load_motor_for(rf.motor)
+    if not pressure_correction and motor.nozzle_exit_area is not None:
+        motor = dataclasses.replace(motor, nozzle_exit_area=None)
+    rocket = rf.dry_rocket(motor)
+    table = load_aero_table(rf.aero, rocket)
+    jet = motor.nozzle_exit_area or 0.0
+    aero = build_aero_model(rocket, table=table, surface_roughness=rf.aero.surface_roughness,
+                            re_transition=rf.aero.re_transition, jet_area=jet)
+    launch = rf.launch
+    if atmosphere is None:
+        we = -launch.wind_speed * math.sin(launch.wind_from)
+        wn = -launch.wind_speed * math.cos(launch.wind_from)
+        atmosphere = ISA.from_site(launch.site_elevation, launch.site_temperature, launch.site_pressure,
+                                   wind_east=we, wind_north=wn)
+    ballast = rf.ballast
+    nominal = {
+        "rail_length": launch.rail_length,
+        "inclination": launch.inclination,
+        "heading": launch.heading,
+        "ballast_mass": ballast.mass,
+        "ballast_x": ballast.x if ballast.x is not None else float(rocket.dry_mass_properties().cg_x),
+    }
+    chutes = tuple(Parachute(r.name, r.cd_area, None if r.deploy == "apogee" else float(r.deploy), r.lag)
+                   for r in rf.recovery)
+    return FlightSetup(motor=motor, nozzle_x=rf.motor.nozzle_x, dry=DryMass.from_properties(rocket.dry_mass_properties()),
+                       aero=aero, atmosphere=atmosphere, site_elevation=launch.site_elevation,
+                       latitude=launch.latitude, rail_exit_offset=rail_exit_offset(rocket, rf.motor.nozzle_x, rail_exit),
+                       nominal=nominal, parachutes=chutes, name=rocket.name)
+
+
+def load_setup(path, *, config: str | None = None, **kwargs) -> FlightSetup:
+    """Read a rocket file (``.toml``; ``.ork`` when the OpenRocket reader is
+    installed) and assemble its :class:`FlightSetup`.
+
+    Parameters
+    ----------
+    path : path-like
+    config : str, optional
+        Motor configuration of an OpenRocket file (default: its selected one).
+    kwargs
+        As in :func:`setup_from_file`.
+    """
+    path = Path(path)
+    if not path.exists():
+        raise InputError("file not found", source=path)
+    if path.suffix.lower() == ".ork":
+        try:
+            from ironbark_opt.openrocket import load_ork
+        except ModuleNotFoundError:
+            raise InputError("OpenRocket .ork files are not supported yet: describe the rocket in TOML "
+                             "(docs/rocket-toml.md)", source=path) from None
+        rf = load_ork(path, config=config)
+    else:
+        if config is not None:
+            raise InputError("--config applies to OpenRocket files only", source=path, field="config")
+        from ironbark_opt.rocket.toml_io import load_rocket_toml
+        rf = load_rocket_toml(path)
+    return setup_from_file(rf, **kwargs)
