@@ -9,10 +9,10 @@ through here.
 from __future__ import annotations
 
 import dataclasses
-import math
 from pathlib import Path
 
 from ironbark_opt.aero.model import build_aero_model
+from ironbark_opt.atmosphere.base import wind_from_speed_direction
 from ironbark_opt.atmosphere.isa import ISA
 from ironbark_opt.dynamics.setup import DryMass, FlightSetup, Parachute
 from ironbark_opt.errors import InputError
@@ -104,8 +104,7 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                             re_transition=rf.aero.re_transition, jet_area=jet)
     launch = rf.launch
     if atmosphere is None:
-        we = -launch.wind_speed * math.sin(launch.wind_from)
-        wn = -launch.wind_speed * math.cos(launch.wind_from)
+        we, wn = wind_from_speed_direction(launch.wind_speed, launch.wind_from)
         atmosphere = ISA.from_site(launch.site_elevation, launch.site_temperature, launch.site_pressure,
                                    wind_east=we, wind_north=wn)
     ballast = rf.ballast
@@ -121,7 +120,10 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
     return FlightSetup(motor=motor, nozzle_x=rf.motor.nozzle_x, dry=DryMass.from_properties(rocket.dry_mass_properties()),
                        aero=aero, atmosphere=atmosphere, site_elevation=launch.site_elevation,
                        latitude=launch.latitude, rail_exit_offset=rail_exit_offset(rocket, rf.motor.nozzle_x, rail_exit),
-                       nominal=nominal, parachutes=chutes, name=rocket.name)
+                       nominal=nominal, parachutes=chutes, name=rocket.name,
+                       ballast_mass_max=ballast.mass_max,
+                       ballast_x_range=None if ballast.x_min is None else (ballast.x_min, ballast.x_max),
+                       source=str(rf.source))
 
 
 def load_setup(path, *, config: str | None = None, **kwargs) -> FlightSetup:

@@ -59,6 +59,11 @@ class UniformAir:
     def wind_l(self, h):
         return 0 * h, 0 * h
 
+    def state(self, h, dT=0.0):
+        return {"temperature": self.temperature(h, dT), "pressure": self.pressure(h),
+                "density": self.density(h, dT), "speed_of_sound": self.speed_of_sound(h, dT),
+                "dynamic_viscosity": self.dynamic_viscosity(h, dT), "wind_east": 0 * h, "wind_north": 0 * h}
+
 
 class AxialOnlyAero:
     """CA constant, no normal force, no damping."""

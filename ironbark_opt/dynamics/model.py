@@ -255,7 +255,7 @@ class FlightModel:
             cache[(key, n)] = base.map(n, "thread", 2) if key in self._run else base.map(n)
         return cache[(key, n)]
 
-    def run_batch(self, P: np.ndarray) -> dict:
+    def run_batch(self, P: np.ndarray, *, descent: bool = False) -> dict:
         """Fly many parameter vectors at once to apogee (the Monte Carlo path).
 
         The same phase Functions as :meth:`run`, mapped over the columns of
@@ -267,7 +267,8 @@ class FlightModel:
         -------
         dict of arrays (n,): ``apogee_agl`` [m], ``t_apogee`` [s],
         ``t_rail`` [s], ``rail_exit_speed`` [m/s], ``t_burnout`` [s], and
-        ``x_apogee`` (13, n).
+        ``x_apogee`` (13, n); with ``descent`` also ``t_landing`` [s] and
+        ``x_landing`` (13, n).
         """
         P = np.asarray(P, dtype=float)
         if P.ndim != 2 or P.shape[0] != params.SIZE:
@@ -335,8 +336,11 @@ class FlightModel:
             val, der = (np.array(v).ravel() for v in apex(x_k, t_k[None, :], h[None, :], P))
             h = np.clip(h - val / np.where(der == 0, 1.0, der), 0.0, dtc)
         x_a = np.array(self._mapped("step", n)(x_k, t_k[None, :], h[None, :], P))
-        return dict(apogee_agl=x_a[2], t_apogee=t_k + h, t_rail=t_r,
-                    rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
+        out = dict(apogee_agl=x_a[2], t_apogee=t_k + h, t_rail=t_r,
+                   rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
+        if descent:
+            out.update(self.descend(x_a, t_k + h, P))
+        return out
 
     @staticmethod
     def _newton_in_step(func, x_k, t_k, dt, p, vz_k):
@@ -355,59 +359,118 @@ class FlightModel:
             h = h_new
         return h
 
-    def _descend(self, t_a, x_a, p, t, x, phase):
-        """Integrate from apogee to the ground (parachutes or ballistic)."""
+    # ------------------------------------------------------------------ descent
+    def descent_stages(self) -> list[tuple[float | None, float, str]]:
+        """[(trigger altitude AGL [m] or None for apogee, total Cd*S [m^2], label)].
+
+        Chutes without a deploy altitude open at apogee; the others add their
+        Cd*S when the rocket descends through their altitude (dual deploy).
+        Inflation lag is neglected.  No chute: one ballistic stage (the coast
+        equations continue, 6-DOF).
+        """
         chutes = self.setup.parachutes
-        cd_area = sum(c.cd_area for c in chutes)
-        if cd_area > 0:
-            f = rhs_mod.build(self.setup, "descent", cd_area=cd_area)
-            step = rk4_step(f, "step_descent")
-            label = "descent"
-        else:
-            step = self.step["coast"]
-            label = "ballistic"
-        dt = self.steps.dt_descent if cd_area > 0 else 0.02
-        chunk = phase_trajectory(step, 200, "traj_descent")
-        xs, ts = [], []
-        x_cur, t_cur = x_a, t_a
-        for _ in range(200):
-            X = np.array(chunk(x_cur, t_cur, t_cur + 200 * dt, p))
-            below = np.nonzero(X[2, :] <= 0)[0]
-            if below.size:
-                k = int(below[0])
-                x_k = x_cur if k == 0 else X[:, k - 1]
-                t_k = t_cur + k * dt
-                xs.append(X[:, :k])
-                ts.append(t_cur + dt * np.arange(1, k + 1))
-                hx, tt, pp, hh = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", params.SIZE), ca.SX.sym("h")
-                z = step(hx, tt, hh, pp)[2]
-                g = ca.Function("ground", [hx, tt, hh, pp], [z, ca.jacobian(z, hh)])
-                h = self._newton_in_step(g, x_k, t_k, dt, p, vz_k=float(x_k[2]))
-                x_l = np.array(step(x_k, t_k, h, p)).ravel()
-                xs.append(x_l[:, None])
-                ts.append([t_k + h])
-                break
-            xs.append(X)
-            ts.append(t_cur + dt * np.arange(1, 201))
-            x_cur, t_cur = X[:, -1], t_cur + 200 * dt
-        else:
-            raise SolverError("descent did not reach the ground within the time limit")
-        x_d = np.hstack(xs)
-        t_d = np.concatenate([np.asarray(v, dtype=float) for v in ts])
-        return dict(t=np.concatenate([t, t_d]), x=np.hstack([x, x_d]),
-                    phase=np.concatenate([phase, [label] * t_d.size]),
-                    t_landing=float(t_d[-1]), x_landing=x_d[:, -1])
+        if not chutes:
+            return [(None, 0.0, "ballistic")]
+        stages, cd = [], sum(c.cd_area for c in chutes if c.deploy_altitude is None)
+        stages.append((None, cd, "descent"))
+        for alt in sorted({c.deploy_altitude for c in chutes if c.deploy_altitude is not None}, reverse=True):
+            cd += sum(c.cd_area for c in chutes if c.deploy_altitude == alt)
+            stages.append((alt, cd, f"descent_{len(stages) + 1}"))
+        return stages
+
+    def _descent_functions(self, cd_area: float, label: str):
+        cache = self.__dict__.setdefault("_descent_cache", {})
+        key = (cd_area, label)
+        if key not in cache:
+            if label == "ballistic":
+                f, step = self.rhs["coast"], self.step["coast"]
+            elif cd_area <= 0:
+                raise InputError("a parachute stage has no drag area (Cd*S = 0)", field="recovery")
+            else:
+                f = rhs_mod.build(self.setup, "descent", cd_area=cd_area)
+                step = rk4_step(f, "step_descent")
+            x, t, h = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("h")
+            ps = ca.SX.sym("p", params.SIZE)
+            z = step(x, t, h, ps)[2]
+            cross = ca.Function("z_step", [x, t, h, ps], [z, ca.jacobian(z, h)])
+            cache[key] = (f, step, phase_trajectory(step, 100, f"traj_{label}"), cross)
+            self.__dict__.setdefault("_stage_rhs", {})[label] = f
+        return cache[key]
+
+    def descend(self, x_a, t_a, P, *, keep_samples: bool = False) -> dict:
+        """From apogee states ``x_a`` (13, n) at ``t_a`` (n,) to the ground.
+
+        Each stage integrates with a fixed step (``dt_descent`` under a chute,
+        0.02 s ballistic) in chunks of 100 steps, all samples together, until
+        every sample passes the stage's end altitude; the crossing is then
+        solved inside its step by Newton on the step length (as for apogee).
+
+        Returns
+        -------
+        dict: ``t_landing`` (n,) [s], ``x_landing`` (13, n); with
+        ``keep_samples`` (n = 1 only) also ``t``, ``x``, ``phase`` samples.
+        """
+        n = x_a.shape[1]
+        idx = np.arange(n)
+        x_cur, t_cur = np.array(x_a, dtype=float), np.array(t_a, dtype=float)
+        stages = self.descent_stages()
+        ts, xs, labels = [], [], []
+        for s_i, (_, cd_area, label) in enumerate(stages):
+            z_end = stages[s_i + 1][0] if s_i + 1 < len(stages) else 0.0
+            f, step, chunk, cross = self._descent_functions(cd_area, label)
+            dt = 0.02 if label == "ballistic" else self.steps.dt_descent
+            chunk_n, cross_n = chunk.map(n), cross.map(n)
+            done = x_cur[2] <= z_end
+            x_k, t_k = x_cur.copy(), t_cur.copy()
+            for _ in range(2000):
+                if done.all():
+                    break
+                X = np.array(chunk_n(x_cur, t_cur[None, :], (t_cur + 100 * dt)[None, :], P)).reshape(13, n, 100)
+                below = X[2] <= z_end
+                hit = below.any(axis=1) & ~done
+                k = np.argmax(below, axis=1)
+                prev = np.where(k[None, :] == 0, x_cur, X[:, idx, np.maximum(k - 1, 0)])
+                x_k[:, hit] = prev[:, hit]
+                t_k[hit] = t_cur[hit] + k[hit] * dt
+                if keep_samples:
+                    m = k[0] if hit[0] else 100
+                    xs.append(X[:, 0, :m])
+                    ts.append(t_cur[0] + dt * np.arange(1, m + 1))
+                    labels += [label] * m
+                done = done | hit
+                active = ~done
+                x_cur[:, active] = X[:, active, -1]
+                t_cur[active] = t_cur[active] + 100 * dt
+            else:
+                raise SolverError("descent did not reach the ground within the time limit")
+            h = np.full(n, 0.5 * dt)
+            for _ in range(12):
+                val, der = (np.array(v).ravel() for v in cross_n(x_k, t_k[None, :], h[None, :], P))
+                h = np.clip(h - (val - z_end) / np.where(der == 0, 1.0, der), 0.0, dt)
+            x_cur = np.array(step.map(n)(x_k, t_k[None, :], h[None, :], P))
+            t_cur = t_k + h
+            if keep_samples:
+                xs.append(x_cur[:, :1])
+                ts.append(t_cur[:1])
+                labels.append(label)
+        out = {"t_landing": t_cur, "x_landing": x_cur}
+        if keep_samples:
+            out.update(t=np.concatenate(ts), x=np.hstack(xs), phase=np.array(labels))
+        return out
+
+    def _descend(self, t_a, x_a, p, t, x, phase):
+        """Single run: descent samples appended to the ascent's."""
+        d = self.descend(x_a[:, None], np.array([t_a]), p[:, None], keep_samples=True)
+        return dict(t=np.concatenate([t, d["t"]]), x=np.hstack([x, d["x"]]),
+                    phase=np.concatenate([phase, d["phase"]]),
+                    t_landing=float(d["t_landing"][0]), x_landing=d["x_landing"][:, 0])
 
     def outputs(self, t, x, phase, p) -> np.ndarray:
         """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples."""
         y = np.zeros((len(rhs_mod.OUTPUT_NAMES), t.size))
         for ph in np.unique(phase):
             idx = np.nonzero(phase == ph)[0]
-            key = {"ballistic": "coast"}.get(ph, ph)
-            if key == "descent":
-                f = rhs_mod.build(self.setup, "descent", cd_area=sum(c.cd_area for c in self.setup.parachutes))
-            else:
-                f = self.rhs[key]
+            f = self.rhs[ph] if ph in self.rhs else self._stage_rhs[ph]
             fm = f.map(idx.size)
             y[:, idx] = np.array(fm(x[:, idx], t[idx][None, :], np.repeat(p[:, None], idx.size, axis=1))[1])
         return y
@@ -419,9 +482,9 @@ def _final_state(model: FlightModel, p, T, t_rail_guess: float):
     t_r = model.rail_exit_root(t_rail_guess, p)
     x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
     t_b = float(model.setup.motor.burn_time) * P["burn_time_scale"]
-    x_b = model.trajectory["boost"](x_r, t_r, t_b, p)[:, -1]
-    x_t = model.trajectory["coast"](x_b, t_b, T, p)[:, -1]
-    return x_t, t_r, x_r
+    X_b = model.trajectory["boost"](x_r, t_r, t_b, p)
+    x_t = model.trajectory["coast"](X_b[:, -1], t_b, T, p)[:, -1]
+    return x_t, t_r, x_r, X_b
 
 
 def apogee_functions(model: FlightModel, p_nominal) -> dict:
@@ -431,9 +494,11 @@ def apogee_functions(model: FlightModel, p_nominal) -> dict:
 
     - ``final_state(p, T) -> (x_T, t_rail, x_rail)``: the phased trajectory
       with the final time ``T`` [s] as an input (rail exit by rootfinder);
-    - ``apogee(p) -> (z_apogee [m AGL], t_apogee [s], rail_exit_speed [m/s])``
-      with ``t_apogee`` the root of ``v_z(T) = 0`` (rootfinder, so AD gives
-      the implicit-function derivatives).
+    - ``apogee(p) -> (z_apogee [m AGL], t_apogee [s], rail_exit_speed [m/s],
+      max_speed [m/s])`` with ``t_apogee`` the root of ``v_z(T) = 0``
+      (rootfinder, so AD gives the implicit-function derivatives); the
+      maximum speed is the largest boost-phase sample (the peak is at or just
+      before burnout; its derivative is that sample's).
 
     The rootfinders start from the nominal flight's event times, so they are
     valid for ``p`` in a neighbourhood of ``p_nominal`` (a dispersion or an
@@ -443,11 +508,13 @@ def apogee_functions(model: FlightModel, p_nominal) -> dict:
     t_rail0, t_apogee0 = run["t_rail"], run["t_apogee"]
     p = ca.MX.sym("p", params.SIZE)
     T = ca.MX.sym("T")
-    x_t, t_r, x_r = _final_state(model, p, T, t_rail0)
-    final = ca.Function("final_state", [p, T], [x_t, t_r, x_r], ["p", "T"], ["x_T", "t_rail", "x_rail"])
+    x_t, t_r, x_r, X_b = _final_state(model, p, T, t_rail0)
+    v_max = ca.mmax(ca.sqrt(ca.sum1(X_b[3:6, :] ** 2)))
+    final = ca.Function("final_state", [p, T], [x_t, t_r, x_r, v_max], ["p", "T"],
+                        ["x_T", "t_rail", "x_rail", "max_speed"])
     vz = ca.Function("vz_T", [T, p], [model.vz_l(x_t)])
     t_apo = ca.rootfinder("apogee_time", "newton", vz, {"abstol": 1e-9, "max_iter": 30, "error_on_fail": True})(t_apogee0, p)
-    x_a, t_r2, x_r2 = final(p, t_apo)
-    apogee = ca.Function("apogee", [p], [x_a[2], t_apo, ca.norm_2(x_r2[3:6])],
-                         ["p"], ["apogee_agl", "t_apogee", "rail_exit_speed"])
+    x_a, t_r2, x_r2, v_max2 = final(p, t_apo)
+    apogee = ca.Function("apogee", [p], [x_a[2], t_apo, ca.norm_2(x_r2[3:6]), v_max2],
+                         ["p"], ["apogee_agl", "t_apogee", "rail_exit_speed", "max_speed"])
     return {"final_state": final, "apogee": apogee}

@@ -74,23 +74,23 @@ def mass_properties(setup, t, P):
 def _aero_state(setup, x, P):
     """Air data and body-frame aerodynamic forces/moments about the CG."""
     r_l, v_b, q, w_b = x[0:3], x[3:6], x[6:10], x[10:13]
-    atm = setup.atmosphere
     dT = P["temperature_offset"]
     h = r_l[2] + setup.site_elevation
     t_l = rotation_matrix(q)
-    we, wn = atm.wind_l(h)
+    air = setup.atmosphere.state(h, dT)          # one layer/table lookup for all properties
+    we, wn = air["wind_east"], air["wind_north"]
     wind_l = ca.vertcat(P["wind_scale"] * we + P["wind_east"], P["wind_scale"] * wn + P["wind_north"], 0)
     v_air_b = v_b - t_l.T @ wind_l
-    rho = atm.density(h, dT)
-    a_sound = atm.speed_of_sound(h, dT)
-    mu = atm.dynamic_viscosity(h, dT)
+    rho = air["density"]
+    a_sound = air["speed_of_sound"]
+    mu = air["dynamic_viscosity"]
     speed2 = ca.dot(v_air_b, v_air_b)
     airspeed = ca.sqrt(speed2 + _EPS_V ** 2)
     cross = ca.sqrt(v_air_b[1] ** 2 + v_air_b[2] ** 2 + _EPS_V ** 2)
     alpha = ca.atan2(cross, v_air_b[0])
     return dict(h=h, t_l=t_l, v_air_b=v_air_b, rho=rho, a=a_sound, mu=mu, airspeed=airspeed,
                 cross=cross, alpha=alpha, mach=airspeed / a_sound, qbar=0.5 * rho * speed2,
-                re=rho * airspeed / mu, pressure=atm.pressure(h), w_b=w_b, v_b=v_b, q=q)
+                re=rho * airspeed / mu, pressure=air["pressure"], w_b=w_b, v_b=v_b, q=q)
 
 
 def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:

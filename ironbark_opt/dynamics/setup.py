@@ -93,6 +93,12 @@ class FlightSetup:
     gravity : callable h -> g, optional
         Override of the gravity model (e.g. a constant for analytic tests);
         default: WGS-84 normal gravity at ``latitude`` with height.
+    ballast_mass_max : float or None [kg]
+        Most ballast the bay holds (None: not stated).
+    ballast_x_range : (float, float) or None [m]
+        Ballast bay, aft of the nose tip (None: not stated).
+    source : str or None
+        The file the setup was read from.
     """
 
     motor: Any
@@ -107,6 +113,9 @@ class FlightSetup:
     parachutes: tuple = ()
     name: str = "rocket"
     gravity: Any = None
+    ballast_mass_max: float | None = None
+    ballast_x_range: tuple | None = None
+    source: str | None = None
 
     def nominal_parameters(self, **overrides) -> np.ndarray:
         """Parameter vector with the case's nominal values and ``overrides``."""

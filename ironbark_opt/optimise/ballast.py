@@ -1,0 +1,270 @@
+"""Launch-day ballast: the mass (and optionally position) that hits a target apogee.
+
+Problem (IPOPT, CasADi ``nlpsol``), variables ``w = (m_b, [x_b,] T)``:
+
+    minimise    m_b                         (least ballast; the feasible set
+                                             is a point when x_b is fixed)
+    subject to  v_z(T; p(w)) = 0            (T is the apogee time)
+                z(T; p(w))   = target        [m AGL]
+                v_rail(p(w)) >= v_min        (optional)
+                SM_rail(p(w)) >= SM_min      (optional)
+                0 <= m_b <= m_max,  x_min <= x_b <= x_max
+
+``z``, ``v_z`` come from the same phased RK4 trajectory as ``simulate``
+(rail exit by rootfinder, burnout, coast to ``T``), so the optimum
+re-simulates onto the target.  Before IPOPT runs, the zero- and
+maximum-ballast flights bracket the target: a target outside the bracket is
+reported infeasible at once with the closest achievable apogee and the
+active bound — never a silent IPOPT failure.  If the flight constraints make
+the target unreachable, a second solve minimises ``(z - target)^2`` under
+the constraints and reports the closest feasible apogee.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Mapping
+
+import casadi as ca
+import numpy as np
+import pandas as pd
+
+from ironbark_opt import params
+from ironbark_opt.dynamics.model import _final_state
+from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
+from ironbark_opt.errors import InputError
+from ironbark_opt.flight import flight_model, simulate
+from ironbark_opt.optimise.target import parse_target
+
+_SM = OUTPUT_NAMES.index("static_margin_cal")
+
+
+@dataclass(frozen=True)
+class BallastSolution:
+    """Result of :func:`solve_ballast` (immutable).
+
+    Attributes
+    ----------
+    values : dict
+        Unit-suffixed results: ``ballast_kg``, ``ballast_x_m``,
+        ``apogee_agl_m``, ``apogee_time_s``, ``target_agl_m``,
+        ``rail_exit_speed_mps``, ``static_margin_rail_exit_cal``,
+        ``resimulated_apogee_agl_m``, ``solve_time_s``, ...
+    feasible : bool
+    status : str
+        What happened, in words.
+    active : tuple of str
+        Bounds/constraints at their limit.
+    """
+
+    name: str
+    motor: str
+    feasible: bool
+    status: str
+    active: tuple
+    values: Mapping[str, float]
+    parameters: Mapping[str, float] = field(repr=False, default_factory=dict)
+
+    def __repr__(self) -> str:
+        v = self.values
+        state = "feasible" if self.feasible else "INFEASIBLE"
+        return (f"BallastSolution({self.name!r}, {self.motor}: {v['ballast_kg']:.3f} kg at "
+                f"{v['ballast_x_m']:.3f} m -> apogee {v['apogee_agl_m']:.1f} m AGL, {state})")
+
+    @property
+    def ballast(self) -> float:
+        """Ballast mass [kg]."""
+        return self.values["ballast_kg"]
+
+    def to_dict(self) -> dict:
+        out = {"rocket": self.name, "motor": self.motor, "feasible": self.feasible, "status": self.status,
+               "active": list(self.active)}
+        out.update(self.values)
+        out["parameters"] = dict(self.parameters)
+        return out
+
+    def to_dataframe(self) -> pd.DataFrame:
+        return pd.DataFrame([{k: v for k, v in self.to_dict().items() if k not in ("parameters", "active")}])
+
+    def summary(self) -> str:
+        v = self.values
+        lines = [f"Ballast for {self.name} on {self.motor}: "
+                 f"{'feasible' if self.feasible else 'NOT feasible'} ({self.status})",
+                 f"  target             {v['target_agl_m']:10.1f} m AGL ({v['target_agl_m'] / 0.3048:.0f} ft)",
+                 f"  ballast            {v['ballast_kg']:10.3f} kg at x = {v['ballast_x_m']:.3f} m",
+                 f"  apogee             {v['apogee_agl_m']:10.1f} m AGL at {v['apogee_time_s']:.2f} s "
+                 f"(re-simulated {v['resimulated_apogee_agl_m']:.1f} m)",
+                 f"  rail exit          {v['rail_exit_speed_mps']:10.2f} m/s, static margin "
+                 f"{v['static_margin_rail_exit_cal']:.2f} cal"]
+        if self.active:
+            lines.append(f"  active             {', '.join(self.active)}")
+        lines.append(f"  solve time         {v['solve_time_s']:10.2f} s")
+        return "\n".join(lines)
+
+
+def _bounds(setup, mass_max, x_range):
+    m_max = mass_max if mass_max is not None else setup.ballast_mass_max
+    if m_max is None:
+        m_max = setup.dry.mass            # generous default: doubling the dry mass
+    if m_max <= 0:
+        raise InputError(f"maximum ballast must be > 0 kg, got {m_max}", field="max_ballast")
+    xr = x_range if x_range is not None else setup.ballast_x_range
+    return float(m_max), (None if xr is None else (float(xr[0]), float(xr[1])))
+
+
+def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float | None = None,
+                  x_range=None, ballast_x: float | None = None, min_rail_speed: float | None = None,
+                  min_margin: float | None = None, parameters: Mapping[str, float] | None = None,
+                  ipopt_options: Mapping | None = None) -> BallastSolution:
+    """Ballast mass (and position) putting apogee on ``target``.
+
+    Parameters
+    ----------
+    setup : FlightSetup
+    target : str, float or Target
+        e.g. ``"30000ft"``, ``"3000 m ASL"``, or a number [m AGL].
+    free_position : bool
+        Optimise the ballast position within the bay too.
+    mass_max : float, optional [kg]
+        Upper bound on ballast (default: the file's ``mass_max``, else the dry mass).
+    x_range : (float, float), optional [m]
+        Ballast bay aft of the nose tip (default: the file's bay).
+    ballast_x : float, optional [m]
+        Fixed ballast position (default: the setup's nominal position).
+    min_rail_speed : float, optional [m/s]
+    min_margin : float, optional [calibers]
+        Minimum static margin at rail exit.
+    parameters : mapping, optional
+        Other parameter overrides (SI), e.g. a forecast's wind offsets.
+    ipopt_options : mapping, optional
+        Passed to IPOPT.
+
+    Returns
+    -------
+    BallastSolution
+    """
+    t_start = time.perf_counter()
+    tgt = parse_target(target)
+    target_agl = tgt.agl(setup.site_elevation)
+    if target_agl <= 0:
+        raise InputError(f"target {tgt.text!r} is below the launch site", field="target")
+    m_max, x_bay = _bounds(setup, mass_max, x_range)
+    overrides = dict(parameters or {})
+    if ballast_x is not None:
+        overrides["ballast_x"] = ballast_x
+    if free_position and x_bay is None:
+        raise InputError("a free ballast position needs a bay: give x_min and x_max ([ballast] in the file)",
+                         field="ballast.x_min")
+    p_nom = setup.nominal_parameters(**overrides)
+    i_m, i_x = params.index("ballast_mass"), params.index("ballast_x")
+    model = flight_model(setup)
+
+    def fly(m_b, x_b=None):
+        p = p_nom.copy()
+        p[i_m] = m_b
+        if x_b is not None:
+            p[i_x] = x_b
+        return model.run(p)
+
+    lo, hi = fly(0.0), fly(m_max)
+    a_lo, a_hi = lo["x_apogee"][2], hi["x_apogee"][2]
+    common = dict(name=setup.name, motor=getattr(setup.motor, "designation", "motor"))
+    if not a_hi <= target_agl <= a_lo:
+        m_b = 0.0 if target_agl > a_lo else m_max
+        run = lo if target_agl > a_lo else hi
+        bound = "ballast_kg >= 0 (target above the zero-ballast apogee)" if target_agl > a_lo else \
+            f"ballast_kg <= {m_max:g} (target below the apogee with the most ballast)"
+        return _solution(setup, model, p_nom, m_b, p_nom[i_x], run, target_agl, False,
+                         "target outside the reachable range", (bound,), t_start, common)
+
+    # Initial guess: interpolate between the bracketing flights.
+    frac = (a_lo - target_agl) / (a_lo - a_hi)
+    guess = fly(frac * m_max)
+    m_sym = ca.MX.sym("m_b")
+    x_sym = ca.MX.sym("x_b")
+    T_sym = ca.MX.sym("T")
+    p_sym = ca.MX(ca.DM(p_nom))
+    p_sym[i_m] = m_sym
+    w = [m_sym]
+    if free_position:
+        p_sym[i_x] = x_sym
+        w.append(x_sym)
+    w.append(T_sym)
+    x_T, t_r, x_r, _ = _final_state(model, p_sym, T_sym, guess["t_rail"])
+    v_rail = ca.norm_2(x_r[3:6])
+    margin = model.rhs["boost"](x_r, t_r, p_sym)[1][_SM]
+    g = [model.vz_l(x_T), x_T[2] - target_agl]
+    lbg, ubg, names = [0.0, 0.0], [0.0, 0.0], ["apogee time", "apogee"]
+    if min_rail_speed is not None:
+        g.append(v_rail)
+        lbg.append(float(min_rail_speed))
+        ubg.append(np.inf)
+        names.append(f"rail_exit_speed_mps >= {min_rail_speed:g}")
+    if min_margin is not None:
+        g.append(margin)
+        lbg.append(float(min_margin))
+        ubg.append(np.inf)
+        names.append(f"static_margin_rail_exit_cal >= {min_margin:g}")
+    W = ca.vertcat(*w)
+    lbw = [0.0] + ([x_bay[0]] if free_position else []) + [guess["t_burnout"] + 1e-3]
+    ubw = [m_max] + ([x_bay[1]] if free_position else []) + [guess["t_apogee"] + 30.0]
+    w0 = [frac * m_max] + ([p_nom[i_x]] if free_position else []) + [guess["t_apogee"]]
+    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+            "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-10,
+            "ipopt.constr_viol_tol": 1e-6, "ipopt.max_iter": 100}
+    opts.update({f"ipopt.{k}" if not k.startswith(("ipopt.", "print")) else k: v
+                 for k, v in (ipopt_options or {}).items()})
+    solver = ca.nlpsol("ballast", "ipopt", {"x": W, "f": m_sym / m_max, "g": ca.vertcat(*g)}, opts)
+    sol = solver(x0=w0, lbx=lbw, ubx=ubw, lbg=lbg, ubg=ubg)
+    stats = solver.stats()
+    wopt = np.array(sol["x"]).ravel()
+    feasible = stats["success"]
+    status = stats["return_status"]
+    active: list = []
+    if not feasible:
+        # Constraints make the target unreachable: closest feasible apogee.
+        f2 = ((x_T[2] - target_agl) / 100.0) ** 2
+        solver2 = ca.nlpsol("ballast_closest", "ipopt", {"x": W, "f": f2, "g": ca.vertcat(g[0], *g[2:])}, opts)
+        sol = solver2(x0=w0, lbx=lbw, ubx=ubw, lbg=[0.0] + lbg[2:], ubg=[0.0] + ubg[2:])
+        wopt = np.array(sol["x"]).ravel()
+        status = f"target not reachable under the constraints ({status}); closest feasible apogee shown"
+        gv = np.array(sol["g"]).ravel()
+        active = [n for n, val, lb in zip(names[2:], gv[1:], lbg[2:]) if abs(val - lb) < 1e-4 * max(1, abs(lb))]
+    m_opt = float(wopt[0])
+    x_opt = float(wopt[1]) if free_position else float(p_nom[i_x])
+    if m_opt <= 1e-9:
+        active.append("ballast_kg >= 0")
+    if m_opt >= m_max * (1 - 1e-9):
+        active.append(f"ballast_kg <= {m_max:g}")
+    if free_position:
+        for bound, name in ((x_bay[0], "ballast_x_m >= bay start"), (x_bay[1], "ballast_x_m <= bay end")):
+            if abs(x_opt - bound) < 1e-6:
+                active.append(name)
+    run = fly(m_opt, x_opt)
+    return _solution(setup, model, p_nom, m_opt, x_opt, run, target_agl, feasible,
+                     "solved" if feasible else status, tuple(active), t_start, common,
+                     iterations=stats.get("iter_count"))
+
+
+def _solution(setup, model, p_nom, m_b, x_b, run, target_agl, feasible, status, active, t_start, common,
+              iterations=None) -> BallastSolution:
+    p = p_nom.copy()
+    p[params.index("ballast_mass")] = m_b
+    p[params.index("ballast_x")] = x_b
+    flight = simulate(setup, p=p, model=model)
+    s = flight.summary_values
+    values = {
+        "ballast_kg": float(m_b), "ballast_x_m": float(x_b), "target_agl_m": float(target_agl),
+        "target_asl_m": float(target_agl + setup.site_elevation),
+        "apogee_agl_m": float(run["x_apogee"][2]), "apogee_time_s": float(run["t_apogee"]),
+        "resimulated_apogee_agl_m": s["apogee_agl_m"],
+        "apogee_error_m": s["apogee_agl_m"] - float(target_agl),
+        "rail_exit_speed_mps": s["rail_exit_speed_mps"],
+        "static_margin_rail_exit_cal": s["static_margin_rail_exit_cal"],
+        "max_speed_mps": s["max_speed_mps"], "launch_mass_kg": s["launch_mass_kg"],
+        "solve_time_s": time.perf_counter() - t_start,
+    }
+    if iterations is not None:
+        values["iterations"] = int(iterations)
+    return BallastSolution(feasible=bool(feasible), status=status, active=tuple(active), values=values,
+                           parameters=params.to_dict(p), **common)

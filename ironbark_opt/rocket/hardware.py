@@ -1,0 +1,198 @@
+"""Rail buttons, launch lugs, point masses and inner tubes (value objects; numeric-only).
+
+These items are treated as lying on the rocket axis for the mass build-up:
+the radial offset of a few grams of rail hardware at the body radius adds
+of order 1e-5 kg m^2 and a sub-millimetre lateral CG shift, both neglected.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ironbark_opt.errors import InputError
+from ironbark_opt.rocket import _validate as v
+from ironbark_opt.rocket.mass import MassProperties
+
+
+@dataclass(frozen=True, kw_only=True)
+class PointMass:
+    """A concentrated mass (avionics, recovery gear, bulkheads, ...).
+
+    Parameters
+    ----------
+    mass : float [kg]
+    x : float [m]
+        Its CG, aft of the nose tip.
+    I_transverse, I_axial : float [kg m^2]
+        Own moments about its CG (default 0).
+    name : str
+    """
+
+    mass: float = 0.0
+    x: float = 0.0
+    I_transverse: float = 0.0
+    I_axial: float = 0.0
+    name: str = "point mass"
+
+    def __post_init__(self):
+        v.set_fields(self, mass=v.nonnegative(self.mass, "mass", "kg"),
+                     x=v.number(self.x, "x"),
+                     I_transverse=v.nonnegative(self.I_transverse, "I_transverse", "kg m^2"),
+                     I_axial=v.nonnegative(self.I_axial, "I_axial", "kg m^2"))
+
+    def mass_properties(self) -> MassProperties:
+        """The point mass as MassProperties (numeric-only)."""
+        return MassProperties.axisymmetric(self.mass, self.x, self.I_transverse, self.I_axial)
+
+
+@dataclass(frozen=True, kw_only=True)
+class RailButtons:
+    """A pair of rail buttons (the rocket leaves the rail when the aft one does).
+
+    Parameters
+    ----------
+    x_fore, x_aft : float [m]
+        Button positions aft of the nose tip, ``x_fore < x_aft``.
+    height : float [m]
+        Standoff of the button from the body surface (drag and meshing).
+    mass_each : float [kg]
+    name : str
+    """
+
+    x_fore: float = 0.0
+    x_aft: float = 0.0
+    height: float = 0.0
+    mass_each: float = 0.0
+    name: str = "rail buttons"
+
+    def __post_init__(self):
+        x1 = v.nonnegative(self.x_fore, "x_fore")
+        x2 = v.nonnegative(self.x_aft, "x_aft")
+        if not x2 > x1:
+            raise InputError(f"x_aft ({x2} m) must lie aft of x_fore ({x1} m)", field="x_aft")
+        v.set_fields(self, x_fore=x1, x_aft=x2,
+                     height=v.nonnegative(self.height, "height"),
+                     mass_each=v.nonnegative(self.mass_each, "mass_each", "kg"))
+
+    @property
+    def rail_guides(self) -> tuple[float, float]:
+        """``(x_fore, x_aft)`` [m] of the points that ride the rail."""
+        return self.x_fore, self.x_aft
+
+    def mass_properties(self) -> MassProperties:
+        """Two on-axis point masses (numeric-only)."""
+        m = 2.0 * self.mass_each
+        cg = 0.5 * (self.x_fore + self.x_aft)
+        it = 2.0 * self.mass_each * (0.5 * (self.x_aft - self.x_fore)) ** 2
+        return MassProperties.axisymmetric(m, cg, it, 0.0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class LaunchLug:
+    """A launch lug: a tube of ``length`` [m] from ``x`` [m], radii in [m].
+
+    Parameters
+    ----------
+    x : float [m]
+        Front end, aft of the nose tip.
+    length : float [m]
+    outer_radius, inner_radius : float [m]
+        ``inner_radius < outer_radius``.
+    density : float [kg/m^3] or None
+    name : str
+    """
+
+    x: float = 0.0
+    length: float = 0.0
+    outer_radius: float = 0.0
+    inner_radius: float = 0.0
+    density: float | None = None
+    name: str = "launch lug"
+
+    def __post_init__(self):
+        ro = v.positive(self.outer_radius, "outer_radius")
+        ri = v.nonnegative(self.inner_radius, "inner_radius")
+        if not ri < ro:
+            raise InputError(f"inner_radius ({ri} m) must be smaller than outer_radius "
+                             f"({ro} m)", field="inner_radius")
+        v.set_fields(self, x=v.nonnegative(self.x, "x"),
+                     length=v.positive(self.length, "length"),
+                     outer_radius=ro, inner_radius=ri,
+                     density=v.optional(v.positive, self.density, "density", "kg/m^3"))
+
+    @property
+    def rail_guides(self) -> tuple[float, float]:
+        """``(x_fore, x_aft)`` [m]: the lug's two ends ride the rod."""
+        return self.x, self.x + self.length
+
+    def wetted_area(self) -> float:
+        """Outer lateral surface [m^2]."""
+        return 2.0 * np.pi * self.outer_radius * self.length
+
+    def mass_properties(self) -> MassProperties:
+        """Thick-walled tube treated as on-axis: m L^2/12 transverse (numeric-only)."""
+        if self.density is None:
+            return MassProperties(0.0, self.x, np.zeros((3, 3)))
+        ro, ri, L = self.outer_radius, self.inner_radius, self.length
+        m = self.density * np.pi * (ro * ro - ri * ri) * L
+        return MassProperties.axisymmetric(m, self.x + 0.5 * L, m * L * L / 12.0, 0.0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class InnerTube:
+    """An internal, on-axis tube or disc: coupler, motor mount, shoulder,
+    centering ring, bulkhead (``inner_radius = 0``), engine block.
+
+    Internal components carry mass only (no wetted area, not in the body
+    profile).  Moments of a thick-walled tube about its CG: I_axial =
+    m (ro^2 + ri^2)/2, I_transverse = m ((ro^2 + ri^2)/4 + L^2/12)
+    (Meriam & Kraige, *Dynamics*, App. B table B/4).
+
+    Parameters
+    ----------
+    x : float [m]
+        Front end, aft of the nose tip.
+    length : float [m]
+    outer_radius, inner_radius : float [m]
+        ``0 <= inner_radius < outer_radius``.
+    density : float [kg/m^3] or None
+    mass : float [kg] or None
+        Mass override (keeps the tube's distribution).
+    name : str
+    """
+
+    x: float = 0.0
+    length: float = 0.0
+    outer_radius: float = 0.0
+    inner_radius: float = 0.0
+    density: float | None = None
+    mass: float | None = None
+    name: str = "inner tube"
+
+    def __post_init__(self):
+        ro = v.positive(self.outer_radius, "outer_radius")
+        ri = v.nonnegative(self.inner_radius, "inner_radius")
+        if not ri < ro:
+            raise InputError(f"inner_radius ({ri} m) must be smaller than outer_radius "
+                             f"({ro} m)", field="inner_radius")
+        v.set_fields(self, x=v.nonnegative(self.x, "x"),
+                     length=v.positive(self.length, "length"),
+                     outer_radius=ro, inner_radius=ri,
+                     density=v.optional(v.positive, self.density, "density", "kg/m^3"),
+                     mass=v.optional(v.nonnegative, self.mass, "mass", "kg"))
+
+    def mass_properties(self) -> MassProperties:
+        """The tube's mass build-up (numeric-only).
+
+        A mass override without a density keeps the tube's distribution.
+        """
+        if self.density is None and self.mass is None:
+            return MassProperties(0.0, self.x, np.zeros((3, 3)))
+        rho = 1.0 if self.density is None else self.density
+        ro, ri, L = self.outer_radius, self.inner_radius, self.length
+        m = rho * np.pi * (ro * ro - ri * ri) * L
+        mp = MassProperties.axisymmetric(m, self.x + 0.5 * L,
+                                         m * ((ro * ro + ri * ri) / 4.0 + L * L / 12.0),
+                                         m * (ro * ro + ri * ri) / 2.0)
+        return mp if self.mass is None else mp.scaled_to(self.mass)
