@@ -158,6 +158,8 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     p_nom = setup.nominal_parameters(**overrides)
     i_m, i_x = params.index("ballast_mass"), params.index("ballast_x")
     model = flight_model(setup)
+    if ballast_x is None and not free_position and x_bay is not None and not x_bay[0] <= p_nom[i_x] <= x_bay[1]:
+        p_nom[i_x] = 0.5 * (x_bay[0] + x_bay[1])
 
     def fly(m_b, x_b=None):
         p = p_nom.copy()
@@ -175,61 +177,32 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
         bound = "ballast_kg >= 0 (target above the zero-ballast apogee)" if target_agl > a_lo else \
             f"ballast_kg <= {m_max:g} (target below the apogee with the most ballast)"
         return _solution(setup, model, p_nom, m_b, p_nom[i_x], run, target_agl, False,
-                         "target outside the reachable range", (bound,), t_start, common)
+                         "target outside the reachable range", (bound,), t_start, common, zero_ballast_apogee=a_lo)
 
     # Initial guess: interpolate between the bracketing flights.
     frac = (a_lo - target_agl) / (a_lo - a_hi)
     guess = fly(frac * m_max)
-    m_sym = ca.MX.sym("m_b")
-    x_sym = ca.MX.sym("x_b")
-    T_sym = ca.MX.sym("T")
-    p_sym = ca.MX(ca.DM(p_nom))
-    p_sym[i_m] = m_sym
-    w = [m_sym]
-    if free_position:
-        p_sym[i_x] = x_sym
-        w.append(x_sym)
-    w.append(T_sym)
-    x_T, t_r, x_r, _ = _final_state(model, p_sym, T_sym, guess["t_rail"])
-    v_rail = ca.norm_2(x_r[3:6])
-    margin = model.rhs["boost"](x_r, t_r, p_sym)[1][_SM]
-    g = [model.vz_l(x_T), x_T[2] - target_agl]
-    lbg, ubg, names = [0.0, 0.0], [0.0, 0.0], ["apogee time", "apogee"]
-    if min_rail_speed is not None:
-        g.append(v_rail)
-        lbg.append(float(min_rail_speed))
-        ubg.append(np.inf)
-        names.append(f"rail_exit_speed_mps >= {min_rail_speed:g}")
-    if min_margin is not None:
-        g.append(margin)
-        lbg.append(float(min_margin))
-        ubg.append(np.inf)
-        names.append(f"static_margin_rail_exit_cal >= {min_margin:g}")
-    W = ca.vertcat(*w)
+    nlp = _nlp(model, free_position, min_rail_speed is not None, min_margin is not None, guess["t_rail"],
+               dict(ipopt_options or {}))
+    lbg = [0.0, 0.0] + [float(v) for v in (min_rail_speed, min_margin) if v is not None]
+    ubg = [0.0, 0.0] + [np.inf] * (len(lbg) - 2)
     lbw = [0.0] + ([x_bay[0]] if free_position else []) + [guess["t_burnout"] + 1e-3]
     ubw = [m_max] + ([x_bay[1]] if free_position else []) + [guess["t_apogee"] + 30.0]
     w0 = [frac * m_max] + ([p_nom[i_x]] if free_position else []) + [guess["t_apogee"]]
-    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-            "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-10,
-            "ipopt.constr_viol_tol": 1e-6, "ipopt.max_iter": 100}
-    opts.update({f"ipopt.{k}" if not k.startswith(("ipopt.", "print")) else k: v
-                 for k, v in (ipopt_options or {}).items()})
-    solver = ca.nlpsol("ballast", "ipopt", {"x": W, "f": m_sym / m_max, "g": ca.vertcat(*g)}, opts)
-    sol = solver(x0=w0, lbx=lbw, ubx=ubw, lbg=lbg, ubg=ubg)
-    stats = solver.stats()
+    par = np.concatenate([p_nom, [target_agl, m_max]])
+    sol = nlp["solve"](x0=w0, p=par, lbx=lbw, ubx=ubw, lbg=lbg, ubg=ubg)
+    stats = nlp["solve"].stats()
     wopt = np.array(sol["x"]).ravel()
     feasible = stats["success"]
     status = stats["return_status"]
     active: list = []
     if not feasible:
         # Constraints make the target unreachable: closest feasible apogee.
-        f2 = ((x_T[2] - target_agl) / 100.0) ** 2
-        solver2 = ca.nlpsol("ballast_closest", "ipopt", {"x": W, "f": f2, "g": ca.vertcat(g[0], *g[2:])}, opts)
-        sol = solver2(x0=w0, lbx=lbw, ubx=ubw, lbg=[0.0] + lbg[2:], ubg=[0.0] + ubg[2:])
+        sol = nlp["closest"](x0=w0, p=par, lbx=lbw, ubx=ubw, lbg=[0.0] + lbg[2:], ubg=[0.0] + ubg[2:])
         wopt = np.array(sol["x"]).ravel()
         status = f"target not reachable under the constraints ({status}); closest feasible apogee shown"
         gv = np.array(sol["g"]).ravel()
-        active = [n for n, val, lb in zip(names[2:], gv[1:], lbg[2:]) if abs(val - lb) < 1e-4 * max(1, abs(lb))]
+        active = [n for n, val, lb in zip(nlp["names"], gv[1:], lbg[2:]) if abs(val - lb) < 1e-4 * max(1, abs(lb))]
     m_opt = float(wopt[0])
     x_opt = float(wopt[1]) if free_position else float(p_nom[i_x])
     if m_opt <= 1e-9:
@@ -243,11 +216,49 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     run = fly(m_opt, x_opt)
     return _solution(setup, model, p_nom, m_opt, x_opt, run, target_agl, feasible,
                      "solved" if feasible else status, tuple(active), t_start, common,
-                     iterations=stats.get("iter_count"))
+                     iterations=stats.get("iter_count"), zero_ballast_apogee=a_lo)
+
+
+def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, t_rail_guess: float, ipopt_options):
+    """IPOPT solvers for the ballast problem, built once per model and reused.
+
+    NLP parameters: the nominal parameter vector, the target [m AGL] and the
+    ballast bound [kg] (for scaling), so a warm solve pays no graph building.
+    """
+    key = ("ballast_nlp", free_position, rail_speed, margin, tuple(sorted(ipopt_options.items())))
+    cache = model.__dict__.setdefault("_nlp_cache", {})
+    if key in cache:
+        return cache[key]
+    i_m, i_x = params.index("ballast_mass"), params.index("ballast_x")
+    par = ca.MX.sym("par", params.SIZE + 2)
+    p_sym = par[: params.SIZE]
+    target_agl, m_max = par[params.SIZE], par[params.SIZE + 1]
+    m_sym, x_sym, T_sym = ca.MX.sym("m_b"), ca.MX.sym("x_b"), ca.MX.sym("T")
+    p_sym = ca.vertcat(p_sym[:i_m], m_sym, x_sym if free_position else p_sym[i_x], p_sym[i_x + 1:])
+    w = [m_sym] + ([x_sym] if free_position else []) + [T_sym]
+    x_T, t_r, x_r, _ = _final_state(model, p_sym, T_sym, t_rail_guess)
+    g = [model.vz_l(x_T), x_T[2] - target_agl]
+    names = []
+    if rail_speed:
+        g.append(ca.norm_2(x_r[3:6]))
+        names.append("rail_exit_speed_mps >= minimum")
+    if margin:
+        g.append(model.rhs["boost"](x_r, t_r, p_sym)[1][_SM])
+        names.append("static_margin_rail_exit_cal >= minimum")
+    W = ca.vertcat(*w)
+    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+            "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-10,
+            "ipopt.constr_viol_tol": 1e-6, "ipopt.max_iter": 100}
+    opts.update({(k if k.startswith("ipopt.") else f"ipopt.{k}"): v for k, v in ipopt_options.items()})
+    solve = ca.nlpsol("ballast", "ipopt", {"x": W, "p": par, "f": m_sym / m_max, "g": ca.vertcat(*g)}, opts)
+    closest = ca.nlpsol("ballast_closest", "ipopt", {"x": W, "p": par, "f": ((x_T[2] - target_agl) / 100.0) ** 2,
+                                                      "g": ca.vertcat(g[0], *g[2:])}, opts)
+    cache[key] = {"solve": solve, "closest": closest, "names": names}
+    return cache[key]
 
 
 def _solution(setup, model, p_nom, m_b, x_b, run, target_agl, feasible, status, active, t_start, common,
-              iterations=None) -> BallastSolution:
+              iterations=None, zero_ballast_apogee=None) -> BallastSolution:
     p = p_nom.copy()
     p[params.index("ballast_mass")] = m_b
     p[params.index("ballast_x")] = x_b
@@ -262,6 +273,7 @@ def _solution(setup, model, p_nom, m_b, x_b, run, target_agl, feasible, status, 
         "rail_exit_speed_mps": s["rail_exit_speed_mps"],
         "static_margin_rail_exit_cal": s["static_margin_rail_exit_cal"],
         "max_speed_mps": s["max_speed_mps"], "launch_mass_kg": s["launch_mass_kg"],
+        "zero_ballast_apogee_agl_m": float(zero_ballast_apogee),
         "solve_time_s": time.perf_counter() - t_start,
     }
     if iterations is not None:

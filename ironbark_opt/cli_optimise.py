@@ -1,0 +1,101 @@
+"""``ironbark ballast ROCKET --target 30000ft``: launch-day ballast and motor choice."""
+from __future__ import annotations
+
+import dataclasses
+
+import click
+
+from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.optimise.motor_choice import OBJECTIVES
+from ironbark_opt.vehicle import RAIL_EXIT_RULES
+
+
+def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | None):
+    """Replace ``setup``'s atmosphere (and site) by a forecast profile, if asked."""
+    if model is None:
+        if site is not None or time is not None:
+            raise click.UsageError("--site/--time need --forecast rap|gfs")
+        return setup
+    if time is None:
+        raise click.UsageError("--forecast needs --time ISO (UTC launch time)")
+    from ironbark_opt.atmosphere.forecast import forecast_profile
+    from ironbark_opt.atmosphere.sites import get_site
+
+    if site is None:
+        raise click.UsageError("--forecast needs --site NAME (see 'ironbark weather sites')")
+    where = get_site(site)
+    columns = forecast_profile(model, time, site=where)
+    lat, elevation = where.latitude, where.elevation
+    elevation = columns.ground_elevation if columns.ground_elevation is not None else elevation
+    return dataclasses.replace(setup, atmosphere=columns.to_profile(), site_elevation=float(elevation), latitude=lat)
+
+
+@click.command("ballast")
+@click.argument("rocket", type=click.Path(dir_okay=False))
+@click.option("--target", required=True, help="Target apogee, e.g. 30000ft, 3000m, '10000ft ASL'.")
+@click.option("--motor", "motors", multiple=True,
+              help="Candidate motor: file, folder of files, or ThrustCurve.org name (repeatable).")
+@click.option("--objective", type=click.Choice(OBJECTIVES), default="least_ballast", show_default=True,
+              help="How to rank feasible motors.")
+@click.option("--forecast", type=click.Choice(["rap", "gfs"]), help="Fly through a NOAA forecast profile.")
+@click.option("--site", help="Launch-site preset for the forecast (see 'ironbark weather sites').")
+@click.option("--time", help="Launch time for the forecast, ISO 8601 UTC.")
+@click.option("--min-rail-speed", type=float, help="Minimum rail-exit speed [m/s].")
+@click.option("--min-margin", type=float, help="Minimum static margin at rail exit [calibers].")
+@click.option("--max-ballast", type=float, help="Most ballast the bay holds [kg].")
+@click.option("--ballast-x", type=float, help="Ballast position, aft of the nose tip [m].")
+@click.option("--free-position", is_flag=True, help="Optimise the position within the ballast bay too.")
+@click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True)
+@click.option("--processes", type=int, help="Worker processes for several motors.")
+@click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
+              help="Write the flight at the optimum (PNG/PDF/SVG).")
+@json_option
+@handle_errors
+def ballast_command(rocket, target, motors, objective, forecast, site, time, min_rail_speed, min_margin,
+                    max_ballast, ballast_x, free_position, rail_exit, processes, plot_path, as_json):
+    """Ballast (and motor) that put ROCKET's apogee on --target."""
+    from ironbark_opt.optimise.ballast import solve_ballast
+    from ironbark_opt.optimise.motor_choice import choose_motor
+    from ironbark_opt.vehicle import load_setup
+
+    setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit), forecast, site, time)
+    kwargs = dict(mass_max=max_ballast, ballast_x=ballast_x, free_position=free_position,
+                  min_rail_speed=min_rail_speed, min_margin=min_margin)
+    if motors:
+        if forecast is not None:
+            processes = 1          # the forecast profile lives in this process only
+        ranking = choose_motor(setup, motors, target, objective=objective, processes=processes,
+                               load_kwargs={"rail_exit": rail_exit}, **kwargs)
+        best = ranking.best or (ranking.solutions[0] if ranking.solutions else None)
+        result = ranking.to_dict()
+        if best is not None:
+            result.update({k: v for k, v in best.to_dict().items() if k not in ("parameters",)})
+            result["motor"] = best.motor
+        result["feasible"] = ranking.best is not None
+        if best is not None and plot_path:
+            from ironbark_opt.optimise.motor_choice import expand_candidates
+            for cand in expand_candidates(motors):
+                motor = cand.load()
+                if motor.designation == best.motor:
+                    _plot(dataclasses.replace(setup, motor=motor), best, plot_path)
+                    break
+        emit(result, as_json, ranking.summary())
+        return
+    solution = solve_ballast(setup, target, **kwargs)
+    _plot(setup, solution, plot_path)
+    emit(solution.to_dict(), as_json, solution.summary())
+
+
+def _plot(setup, solution, path):
+    """Overview figure of the flight at the optimum."""
+    if not path or solution is None:
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    from ironbark_opt.flight import simulate
+    from ironbark_opt.plots import plot_flight
+    plot_flight(simulate(setup, parameters={"ballast_mass": solution.values["ballast_kg"],
+                                            "ballast_x": solution.values["ballast_x_m"]}), filename=path)
+
+
+COMMANDS = [ballast_command]

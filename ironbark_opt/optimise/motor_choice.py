@@ -1,0 +1,213 @@
+"""Motor choice: solve the ballast problem for every candidate motor and rank them.
+
+Why enumeration and not a mixed-integer NLP (CasADi's ``bonmin``): a team
+chooses among a handful to a few dozen motors, each solve takes about a
+second, the candidates are independent (so they run in parallel processes),
+and every candidate gets its own exact, verified answer — including the
+infeasible ones, with the reason.  A relaxed formulation would have to blend
+thrust curves (a blend of two motors is no motor), and branch-and-bound on
+one binary per motor does strictly more work than solving each candidate
+once.  Enumeration is exact and simpler; ``bonmin`` pays off only when the
+discrete choice interacts with many continuous variables, which a launch-day
+decision does not have.
+"""
+from __future__ import annotations
+
+import dataclasses
+import os
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Mapping, Sequence
+
+import pandas as pd
+
+from ironbark_opt.errors import InputError, IronbarkError
+from ironbark_opt.optimise.ballast import BallastSolution, solve_ballast
+
+OBJECTIVES = ("least_ballast", "largest_margin", "closest_apogee")
+MOTOR_SUFFIXES = (".eng", ".rse", ".csv")
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One motor to try: a file (and a designation inside it) or a ThrustCurve name."""
+
+    label: str
+    path: str | None = None
+    designation: str | None = None
+
+    def load(self):
+        """The Motor (numeric-only; may use the network for ThrustCurve names)."""
+        from ironbark_opt.motors import load_motor
+        if self.path is not None:
+            return load_motor(self.path, self.designation)
+        try:
+            from ironbark_opt.motors import thrustcurve
+        except ImportError:
+            raise InputError(f"motor {self.label!r}: not a file, and the ThrustCurve.org client is not "
+                             "available", field="motor") from None
+        return thrustcurve.load_motor(self.label)
+
+
+def expand_candidates(items: Sequence) -> list[Candidate]:
+    """Files, folders (all motor files in them) and names -> candidates.
+
+    A multi-motor ``.eng`` gives one candidate per motor.
+    """
+    from ironbark_opt.motors import read_eng, read_rse
+    out: list[Candidate] = []
+    for item in items:
+        if isinstance(item, Candidate):
+            out.append(item)
+            continue
+        path = Path(str(item))
+        if path.is_dir():
+            files = sorted(f for f in path.iterdir() if f.suffix.lower() in MOTOR_SUFFIXES)
+            if not files:
+                raise InputError("no motor files (.eng, .rse, .csv) in this folder", source=path)
+            out.extend(expand_candidates([str(f) for f in files]))
+        elif path.exists():
+            if path.suffix.lower() in (".eng", ".rse"):
+                motors = read_eng(path) if path.suffix.lower() == ".eng" else read_rse(path)
+                if len(motors) == 1:
+                    out.append(Candidate(motors[0].designation or path.stem, str(path), None))
+                else:
+                    out.extend(Candidate(m.designation, str(path), m.designation) for m in motors)
+            else:
+                out.append(Candidate(path.stem, str(path), None))
+        else:
+            out.append(Candidate(str(item)))
+    if not out:
+        raise InputError("no candidate motors given", field="motor")
+    return out
+
+
+@dataclass(frozen=True)
+class MotorRanking:
+    """Result of :func:`choose_motor`: solutions ranked best first."""
+
+    target: str
+    objective: str
+    solutions: tuple            # of BallastSolution, ranked
+    failures: tuple             # of (label, message)
+
+    def __repr__(self) -> str:
+        best = self.best
+        return (f"MotorRanking({len(self.solutions)} motors, objective {self.objective}, best "
+                f"{best.motor if best else 'none'})")
+
+    @property
+    def best(self) -> BallastSolution | None:
+        """Best feasible solution (None when no candidate can hit the target)."""
+        return self.solutions[0] if self.solutions and self.solutions[0].feasible else None
+
+    def to_dataframe(self) -> pd.DataFrame:
+        rows = []
+        for rank, sol in enumerate(self.solutions, 1):
+            v = sol.values
+            rows.append({"rank": rank, "motor": sol.motor, "feasible": sol.feasible, "ballast_kg": v["ballast_kg"],
+                         "apogee_agl_m": v["apogee_agl_m"], "zero_ballast_apogee_agl_m": v["zero_ballast_apogee_agl_m"],
+                         "rail_exit_speed_mps": v["rail_exit_speed_mps"],
+                         "static_margin_rail_exit_cal": v["static_margin_rail_exit_cal"],
+                         "status": sol.status})
+        return pd.DataFrame(rows)
+
+    def to_dict(self) -> dict:
+        best = self.best
+        return {"target": self.target, "objective": self.objective,
+                "motor": best.motor if best else None,
+                "ballast_kg": best.values["ballast_kg"] if best else None,
+                "apogee_agl_m": best.values["apogee_agl_m"] if best else None,
+                "apogee_time_s": best.values["apogee_time_s"] if best else None,
+                "candidates": [s.to_dict() for s in self.solutions],
+                "failures": [{"motor": label, "error": msg} for label, msg in self.failures]}
+
+    def summary(self) -> str:
+        lines = [f"Motor choice for target {self.target} (objective: {self.objective})",
+                 f"  {'rank':>4}  {'motor':<22} {'feasible':<8} {'ballast kg':>10} {'apogee m':>9} "
+                 f"{'0-ballast m':>11} {'rail m/s':>8} {'margin cal':>10}"]
+        for rank, sol in enumerate(self.solutions, 1):
+            v = sol.values
+            lines.append(f"  {rank:>4}  {sol.motor[:22]:<22} {'yes' if sol.feasible else 'no':<8} "
+                         f"{v['ballast_kg']:10.3f} {v['apogee_agl_m']:9.1f} {v['zero_ballast_apogee_agl_m']:11.1f} "
+                         f"{v['rail_exit_speed_mps']:8.2f} {v['static_margin_rail_exit_cal']:10.2f}")
+        for label, msg in self.failures:
+            lines.append(f"  failed  {label}: {msg}")
+        if self.best is None:
+            lines.append("  no candidate reaches the target within the ballast and flight constraints")
+        return "\n".join(lines)
+
+
+def _rank_key(objective: str, target_agl: float):
+    def key(sol: BallastSolution):
+        v = sol.values
+        if objective == "least_ballast":
+            score = v["ballast_kg"]
+        elif objective == "largest_margin":
+            score = -v["static_margin_rail_exit_cal"]
+        else:
+            score = abs(v["zero_ballast_apogee_agl_m"] - target_agl)
+        return (not sol.feasible, abs(v["apogee_agl_m"] - target_agl) if not sol.feasible else score)
+    return key
+
+
+def _solve_one(setup, candidate: Candidate, target, kwargs):
+    motor = candidate.load()
+    return solve_ballast(dataclasses.replace(setup, motor=motor), target, **kwargs)
+
+
+def _solve_from_file(source: str, load_kwargs: dict, candidate: Candidate, target, kwargs):
+    """Process-pool worker: rebuild the setup from its file (picklable inputs only)."""
+    from ironbark_opt.vehicle import load_setup
+    return _solve_one(load_setup(source, **load_kwargs), candidate, target, kwargs)
+
+
+def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least_ballast",
+                 processes: int | None = None, load_kwargs: Mapping | None = None,
+                 progress: bool = False, **ballast_kwargs) -> MotorRanking:
+    """Solve the ballast problem for each candidate motor and rank the results.
+
+    Parameters
+    ----------
+    setup : FlightSetup
+        The rocket; its motor is replaced by each candidate (same nozzle position).
+    candidates : sequence
+        Motor files, folders of motor files, ThrustCurve.org names or :class:`Candidate`.
+    target : str or float
+        As in :func:`~ironbark_opt.optimise.ballast.solve_ballast`.
+    objective : {'least_ballast', 'largest_margin', 'closest_apogee'}
+        Order among feasible candidates (infeasible ones follow, closest first).
+    processes : int, optional
+        Worker processes (default: up to the CPU count; 1 runs in this process).
+        Parallel runs rebuild the setup from ``setup.source`` in each worker.
+    load_kwargs : mapping, optional
+        Keyword arguments ``load_setup`` used for ``setup`` (rail_exit, ...).
+    ballast_kwargs
+        Passed to :func:`solve_ballast` (mass_max, min_rail_speed, min_margin, ...).
+    """
+    if objective not in OBJECTIVES:
+        raise InputError(f"objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}", field="objective")
+    cands = expand_candidates(candidates)
+    n_proc = processes if processes is not None else min(len(cands), os.cpu_count() or 1)
+    results: list = []
+    failures: list = []
+    if n_proc > 1 and setup.source is not None and len(cands) > 1:
+        with ProcessPoolExecutor(max_workers=n_proc) as pool:
+            futures = [(c, pool.submit(_solve_from_file, setup.source, dict(load_kwargs or {}), c, target,
+                                       ballast_kwargs)) for c in cands]
+            for c, fut in futures:
+                try:
+                    results.append(fut.result())
+                except IronbarkError as err:
+                    failures.append((c.label, str(err)))
+    else:
+        for c in cands:
+            try:
+                results.append(_solve_one(setup, c, target, ballast_kwargs))
+            except IronbarkError as err:
+                failures.append((c.label, str(err)))
+    if results:
+        target_agl = results[0].values["target_agl_m"]
+        results.sort(key=_rank_key(objective, target_agl))
+    return MotorRanking(str(target), objective, tuple(results), tuple(failures))
