@@ -13,6 +13,8 @@ DATA = TESTS / "data"
 
 def pytest_configure(config):
     # Keep the JIT cache and any user cache inside a temp area during tests.
+    import tempfile
     if "IRONBARK_CACHE_DIR" not in os.environ:
-        import tempfile
         os.environ["IRONBARK_CACHE_DIR"] = tempfile.mkdtemp(prefix="ironbark-test-cache-")
+    if "MPLCONFIGDIR" not in os.environ:
+        os.environ["MPLCONFIGDIR"] = tempfile.mkdtemp(prefix="ironbark-test-mpl-")
