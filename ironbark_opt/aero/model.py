@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import casadi as ca
 import numpy as np
 
 from ironbark_opt import _math as m
@@ -33,6 +34,8 @@ from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
 from ironbark_opt.errors import InputError
 
 _ALPHA_CP = math.radians(0.5)   # [rad] angle at which a table's CP is read
+#: Mach grid of the tabulated Barrowman/damping sums (cubic B-spline; inputs clamped to it)
+LIFT_MACH_GRID = np.concatenate([np.arange(0.0, 0.5, 0.02), np.arange(0.5, 2.0, 0.005), np.arange(2.0, 6.0001, 0.05)])
 
 
 @dataclass(frozen=True)
@@ -92,6 +95,47 @@ class AeroModel:
     body_lift_k: float = 1.1
     includes: tuple = field(default=())
 
+    # -- tabulated geometry sums (speed) ----------------------------------------
+    def _sums_exact(self, mach):
+        """(S0, S1, S2, Cl_cant, Clp) at numeric ``mach``: S_k = sum_i CN_alpha_i x_i^k."""
+        comps = self.lift.components(mach, self.reference_area)
+        s0 = sum(c.cn_alpha + 0 * mach for c in comps)
+        s1 = sum(c.cn_alpha * c.x_cp + 0 * mach for c in comps)
+        s2 = sum(c.cn_alpha * c.x_cp ** 2 + 0 * mach for c in comps)
+        forcing, clp = 0.0 * mach, 0.0 * mach
+        for f in self.lift.fins:
+            args = (f.planform, f.count, f.body_radius, self.reference_area, self.reference_length, mach)
+            if f.cant != 0.0:
+                forcing = forcing + f.cant * damping.roll_forcing_cl_delta(*args)
+            clp = clp + damping.roll_damping_clp(*args)
+        return s0, s1, s2, forcing, clp
+
+    def _sums(self, mach):
+        """The same sums from one vector-valued B-spline over ``LIFT_MACH_GRID``.
+
+        The Barrowman fin slope, its CP shift and the roll derivatives are
+        smooth functions of Mach alone; tabulating their sums once lets the
+        flight step evaluate CP, pitch damping about any CG
+        (sum CN_i (x_i - x_cg)^2 = S2 - 2 x_cg S1 + x_cg^2 S0) and roll
+        with one interpolant call instead of the full component build-up.
+        Tabulation error: < 1e-4 of each sum's range, largest at the ends of the
+        transonic blends (M = 0.9, 1.5) where the exact curves are only C1.
+        """
+        fn = self.__dict__.get("_sums_fn")
+        if fn is None:
+            values = np.vstack(self._sums_exact(LIFT_MACH_GRID))          # (5, n)
+            fn = ca.interpolant("lift_sums", "bspline", [LIFT_MACH_GRID], values.ravel(order="F"))
+            object.__setattr__(self, "_sums_fn", fn)
+        mc = m.clip(mach, LIFT_MACH_GRID[0], LIFT_MACH_GRID[-1])
+        if m.is_symbolic(mach):
+            out = fn(mc)
+            return tuple(out[i] for i in range(5))
+        flat = np.atleast_1d(np.asarray(mc, dtype=float)).ravel()
+        out = np.array(fn(flat[None, :]))                                   # (5, n), one call
+        if np.ndim(mach) == 0:
+            return tuple(float(out[i, 0]) for i in range(5))
+        return tuple(out[i].reshape(np.shape(mach)) for i in range(5))
+
     # -- axial ------------------------------------------------------------------
     def axial(self, mach, alpha, reynolds_per_m, power_on: bool):
         """CA [-] (positive rearward)."""
@@ -108,10 +152,10 @@ class AeroModel:
 
     # -- normal force and moment -------------------------------------------------
     def _barrowman(self, mach, alpha):
-        comps = self.lift.components(mach, self.reference_area)
-        cna, x_cp = barrowman.total(comps)
+        s0, s1, _, _, _ = self._sums(mach)
+        x_cp = s1 / s0
         s = m.sin(alpha)
-        cn_lin = cna * s
+        cn_lin = s0 * s
         cn_body = self.body_lift_k * self.lift.planform_area / self.reference_area * s * s
         cn = cn_lin + cn_body
         d = self.reference_length
@@ -139,22 +183,23 @@ class AeroModel:
             a = m.fmax(alpha, _ALPHA_CP)
             cn, cm = t.symbolic("CN", mach, a), t.symbolic("Cm", mach, a)
             return self.moment_reference_x - self.reference_length * cm / cn
-        return barrowman.total(self.lift.components(mach, self.reference_area))[1]
+        s0, s1, _, _, _ = self._sums(mach)
+        return s1 / s0
 
     # -- damping ----------------------------------------------------------------
     def pitch_damping(self, mach, x_cg):
-        """Cmq about the current CG [-/rad] (rate nondimensionalised by d/2V)."""
-        comps = self.lift.components(mach, self.reference_area)
-        return damping.pitch_damping_cmq(comps, x_cg, self.reference_length)
+        """Cmq about the current CG [-/rad] (rate nondimensionalised by d/2V).
+
+        -2 sum_i CN_alpha_i ((x_i - x_cg)/d)^2, as
+        :func:`~ironbark_opt.aero.damping.pitch_damping_cmq`, from the
+        tabulated sums.
+        """
+        s0, s1, s2, _, _ = self._sums(mach)
+        return -2.0 * (s2 - 2.0 * x_cg * s1 + x_cg * x_cg * s0) / self.reference_length ** 2
 
     def roll_coefficients(self, mach):
         """(Cl from fin cant [-], Clp [-/rad]) summed over fin sets."""
-        forcing, clp = 0.0 * mach, 0.0 * mach
-        for f in self.lift.fins:
-            args = (f.planform, f.count, f.body_radius, self.reference_area, self.reference_length, mach)
-            if f.cant != 0.0:
-                forcing = forcing + f.cant * damping.roll_forcing_cl_delta(*args)
-            clp = clp + damping.roll_damping_clp(*args)
+        _, _, _, forcing, clp = self._sums(mach)
         return forcing, clp
 
 
