@@ -37,6 +37,10 @@ def rk4_step(rhs: ca.Function, name: str = "rk4") -> ca.Function:
     k3 = rhs(x + dt / 2 * k2, t + dt / 2, p)[0]
     k4 = rhs(x + dt * k3, t + dt, p)[0]
     x_next = x + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    if sym is ca.SX:
+        # k2 and k3 share the time t + dt/2: everything that depends on time and
+        # parameters only (motor, mass properties) is evaluated once.
+        x_next = ca.cse(x_next)
     return ca.Function(name, [x, t, dt, p], [x_next], ["x", "t", "dt", "p"], ["x_next"])
 
 
