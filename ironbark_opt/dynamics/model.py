@@ -221,7 +221,7 @@ class FlightModel:
         t_end = t_b + vz_b / G0 + 2.0
         for _ in range(3):
             X_coast = np.array(self._run["coast"](x_b, t_b, t_end, p))
-            vz = np.array(self.vz_l.map(X_coast.shape[1])(X_coast)).ravel()
+            vz = np.array(self._mapped("vz", X_coast.shape[1])(X_coast)).ravel()
             below = np.nonzero(vz <= 0)[0]
             if below.size:
                 break
@@ -232,8 +232,11 @@ class FlightModel:
         dt_c = (t_end - t_b) / self.steps.n_coast
         x_k = x_b if k == 0 else X_coast[:, k - 1]
         t_k = t_b + k * dt_c
-        h = self._newton_in_step(self._apex, x_k, t_k, dt_c, p, vz_k=float(self.vz_l(x_k)))
-        x_a = np.array(self.step["coast"](x_k, t_k, h, p)).ravel()
+        vz_k = vz_b if k == 0 else vz[k - 1]
+        h0 = dt_c * vz_k / (vz_k - vz[k]) if vz_k != vz[k] else dt_c
+        h = float(self.refine_in_step(self._mapped("apex", 1), x_k[:, None], np.array([t_k]), np.array([h0]),
+                                      np.array([dt_c]), p[:, None])[0])
+        x_a = np.array(self._mapped("step", 1)(x_k, t_k, h, p)).ravel()
         t_a = t_k + h
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
         t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], t_r + (t_b - t_r) * np.arange(1, n_b + 1) / n_b,
@@ -331,10 +334,7 @@ class FlightModel:
         vz_k = np.where(kc == 0, vz_b, vz[idx, np.maximum(kc - 1, 0)])
         vz_end = vz[idx, kc]
         h = dtc * vz_k / np.where(vz_k != vz_end, vz_k - vz_end, 1.0)
-        apex = self._mapped("apex", n)
-        for _ in range(8):                        # Newton on the step length, all samples
-            val, der = (np.array(v).ravel() for v in apex(x_k, t_k[None, :], h[None, :], P))
-            h = np.clip(h - val / np.where(der == 0, 1.0, der), 0.0, dtc)
+        h = self.refine_in_step(self._mapped("apex", n), x_k, t_k, h, dtc, P)
         x_a = np.array(self._mapped("step", n)(x_k, t_k[None, :], h[None, :], P))
         out = dict(apogee_agl=x_a[2], t_apogee=t_k + h, t_rail=t_r,
                    rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
@@ -343,20 +343,18 @@ class FlightModel:
         return out
 
     @staticmethod
-    def _newton_in_step(func, x_k, t_k, dt, p, vz_k):
-        """Root h in [0, dt] of func(x_k, t_k, h, p)[0] (Newton, safeguarded)."""
-        v_end = float(func(x_k, t_k, dt, p)[0])
-        h = dt * vz_k / (vz_k - v_end) if vz_k != v_end else dt
-        for _ in range(20):
-            val, der = func(x_k, t_k, h, p)
-            val, der = float(val), float(der)
-            if der == 0:
-                break
-            h_new = min(max(h - val / der, 0.0), dt)
-            if abs(h_new - h) < 1e-12:
-                h = h_new
-                break
-            h = h_new
+    def refine_in_step(func, x_k, t_k, h, dt, P, level=0.0, iterations: int = 8):
+        """Event inside a step: root ``h`` in [0, dt] of ``func(x_k, t_k, h, P)[0] = level``.
+
+        Newton on the step length with the derivative from ``func``'s second
+        output, clipped to the step, a fixed number of iterations (quadratic
+        convergence from the linear guess: 8 are far more than needed).  All
+        columns at once; :meth:`run` and :meth:`run_batch` both call this, so
+        their events agree to the last bit.
+        """
+        for _ in range(iterations):
+            val, der = (np.array(v).ravel() for v in func(x_k, t_k[None, :], h[None, :], P))
+            h = np.clip(h - (val - level) / np.where(der == 0, 1.0, der), 0.0, dt)
         return h
 
     # ------------------------------------------------------------------ descent
@@ -443,10 +441,7 @@ class FlightModel:
                 t_cur[active] = t_cur[active] + 100 * dt
             else:
                 raise SolverError("descent did not reach the ground within the time limit")
-            h = np.full(n, 0.5 * dt)
-            for _ in range(12):
-                val, der = (np.array(v).ravel() for v in cross_n(x_k, t_k[None, :], h[None, :], P))
-                h = np.clip(h - (val - z_end) / np.where(der == 0, 1.0, der), 0.0, dt)
+            h = self.refine_in_step(cross_n, x_k, t_k, np.full(n, 0.5 * dt), dt, P, level=z_end, iterations=12)
             x_cur = np.array(step.map(n)(x_k, t_k[None, :], h[None, :], P))
             t_cur = t_k + h
             if keep_samples:
