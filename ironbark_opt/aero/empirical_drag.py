@@ -1,0 +1,96 @@
+"""Interim pressure-drag estimate from geometry (an AeroTable with ``includes=("pressure",)``).
+
+Used when a rocket file (e.g. an OpenRocket .ork) carries no drag data;
+:func:`~ironbark_opt.aero.model.build_aero_model` adds skin friction and
+base drag.  The built-in panel solver will replace it.  Parts, all from
+S. Niskanen, *Development of an Open Source model rocket simulation
+software* (OpenRocket technical documentation, 2013), sec. 3.4:
+
+- stagnation pressure ratio q_stag/q = 1 + M^2/4 + M^4/40 (M < 1),
+  1.84 - 0.76/M^2 + 0.166/M^4 + 0.035/M^6 (M > 1)  (eq. 3.85-3.86);
+- nose cone: subsonic 0.8 sin^2(phi) with phi the joint half-angle of the
+  nose profile (eq. 3.81); above M = 1 the same value times q_stag/q
+  (rough supersonic continuation, a stand-in until the panel solver);
+- fin leading edges, rounded: (1 - M^2)^-0.417 - 1 (M < 0.9),
+  1 - 1.785 (M - 0.9) (0.9 < M < 1), 1.214 - 0.502/M^2 + 0.1095/M^4 (M > 1)
+  (eq. 3.89); square: 0.85 q_stag/q (eq. 3.87); on the frontal area
+  thickness x span x count, times cos^2 of the leading-edge sweep;
+- fin trailing edges (square section): the base-drag coefficient
+  (eq. 3.94) on the same frontal area;
+- boattail transitions: the base-drag coefficient times the annulus area
+  and a length factor 1 (gamma < 1), (3 - gamma)/2 (1-3), 0 (> 3) with
+  gamma = L / (d_fore - d_aft) (eq. 3.88).
+
+Numeric-only (builds a table); the table itself is evaluated symbolically.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ironbark_opt.aero.base_drag import cd_base
+from ironbark_opt.aero.table import AeroTable
+from ironbark_opt.rocket.body import Transition
+from ironbark_opt.rocket.nose import NoseCone
+
+#: Mach grid of the table [-]
+MACH = np.concatenate([np.linspace(0.0, 0.8, 9), np.linspace(0.85, 1.2, 8), np.linspace(1.3, 3.0, 9)])
+
+
+def stagnation_ratio(mach):
+    """q_stag / q [-] (Niskanen 2013, eq. 3.85-3.86); numeric-only."""
+    m = np.asarray(mach, dtype=float)
+    ms = np.maximum(m, 1.0)
+    return np.where(m < 1.0, 1.0 + m ** 2 / 4.0 + m ** 4 / 40.0,
+                    1.84 - 0.76 / ms ** 2 + 0.166 / ms ** 4 + 0.035 / ms ** 6)
+
+
+def rounded_le(mach):
+    """Rounded fin leading-edge pressure drag [-] (Niskanen 2013, eq. 3.89); numeric-only."""
+    m = np.asarray(mach, dtype=float)
+    sub = np.clip(1.0 - np.minimum(m, 0.9) ** 2, 1e-9, None) ** -0.417 - 1.0
+    trans = 1.0 - 1.785 * (m - 0.9)
+    ms = np.maximum(m, 1.0)
+    sup = 1.214 - 0.502 / ms ** 2 + 0.1095 / ms ** 4
+    return np.where(m < 0.9, sub, np.where(m < 1.0, trans, sup))
+
+
+def _joint_half_angle(comp) -> float:
+    x, r = comp.profile(2001)
+    return float(np.arctan(abs(r[-1] - r[-2]) / (x[-1] - x[-2])))
+
+
+def pressure_ca(rocket, mach) -> np.ndarray:
+    """Pressure-drag CA [-] on the rocket's reference area vs Mach (numeric-only)."""
+    m = np.asarray(mach, dtype=float)
+    a_ref = rocket.reference_area()
+    ca = np.zeros_like(m)
+    q = stagnation_ratio(m)
+    for comp in rocket.body_components():
+        if isinstance(comp, NoseCone):
+            phi = _joint_half_angle(comp)
+            sub = 0.8 * np.sin(phi) ** 2 * comp.radius ** 2 * np.pi / a_ref
+            ca += np.where(m < 1.0, sub, sub * q)
+        elif isinstance(comp, Transition) and comp.aft_radius < comp.fore_radius:
+            d1, d2 = 2 * comp.fore_radius, 2 * comp.aft_radius
+            gamma = comp.length / (d1 - d2)
+            k = 1.0 if gamma < 1 else ((3.0 - gamma) / 2.0 if gamma < 3 else 0.0)
+            area = np.pi * (comp.fore_radius ** 2 - comp.aft_radius ** 2)
+            ca += k * np.asarray(cd_base(m), dtype=float) * area / a_ref
+    for fins in rocket.fin_sets():
+        frontal = fins.thickness * fins.span * fins.count / a_ref
+        sweep = np.arctan2(fins.sweep_length, fins.span)
+        le = rounded_le(m) if fins.section.kind in ("rounded", "airfoil") else 0.85 * q
+        ca += le * np.cos(sweep) ** 2 * frontal
+        if fins.section.kind == "square":
+            ca += np.asarray(cd_base(m), dtype=float) * frontal
+    return ca
+
+
+def pressure_drag_table(rocket) -> AeroTable:
+    """AeroTable of CA (pressure parts only) over :data:`MACH`, independent of alpha."""
+    ca = pressure_ca(rocket, MACH)
+    return AeroTable(MACH, [0.0], {"CA": ca[:, None]}, reference_area=rocket.reference_area(),
+                     reference_length=2.0 * rocket.reference_radius(), moment_reference_x=0.0,
+                     includes=("pressure",),
+                     metadata={"generator": "ironbark_opt.aero.empirical_drag",
+                               "method": "Niskanen 2013 sec. 3.4 pressure drag (interim estimate)"})

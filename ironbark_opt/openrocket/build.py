@@ -1,0 +1,184 @@
+"""From an :class:`OrkDocument` to a flyable :class:`RocketFile` (numeric-only).
+
+What can be flown today: one axial stage and one motor mount per
+configuration, ignited at launch; a cluster in that mount flies as one
+equivalent motor (:func:`cluster_motor_file`).  Multi-stage separation,
+air-start, motors in several mounts and parallel boosters/pods are
+rejected with an InputError naming the component.
+"""
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ironbark_opt.errors import InputError
+from ironbark_opt.openrocket import convert
+from ironbark_opt.openrocket.components import FINS
+from ironbark_opt.openrocket.document import OrkDocument, nozzle_x, read_ork
+from ironbark_opt.openrocket.motors import find_motor_file
+from ironbark_opt.rocket.hardware import LaunchLug, RailButtons
+from ironbark_opt.rocket.rocket import Rocket
+from ironbark_opt.rocket.specs import AeroSpec, BallastSpec, LaunchSpec, MotorSpec, RecoverySpec
+
+#: OpenRocket's default parachute drag coefficient (``Parachute.DEFAULT_CD``)
+PARACHUTE_CD = 0.8
+#: drag coefficient assumed for a streamer on its strip area when the file says ``auto``
+STREAMER_CD = 0.6
+_IGNITE_AT_LAUNCH = ("automatic", "launch", "ignition")
+
+
+def check_flyable(doc: OrkDocument, config) -> None:
+    """InputError naming the first feature of ``config`` we cannot fly yet."""
+    if len(doc.rocket.stages) > 1:
+        s = doc.rocket.stages[1]
+        raise InputError(f"multi-stage separation is not supported yet (stage '{s.name}'); "
+                         f"remove the lower stages to fly the sustainer alone",
+                         source=doc.path, field=s.path)
+    for mount, entry in config.motors:
+        if entry.ignition_event not in _IGNITE_AT_LAUNCH or entry.ignition_delay > 0.0:
+            raise InputError(f"air-start is not supported yet: motor {entry.designation} in "
+                             f"'{mount.name}' ignites on '{entry.ignition_event}' + "
+                             f"{entry.ignition_delay:g} s (configuration {config.label()})",
+                             source=doc.path, field=mount.path)
+    if len(config.motors) > 1:
+        mount, entry = config.motors[1]
+        raise InputError(f"configuration {config.label()} lights motors in {len(config.motors)} "
+                         f"mounts; one motor mount per flight is supported (motor "
+                         f"{entry.designation} in '{mount.name}')", source=doc.path, field=mount.path)
+
+
+def cluster_motor_file(path: Path, motor, count: int) -> tuple[Path, str]:
+    """An .eng file of ``count`` identical motors lit together, flown as one on the axis.
+
+    Thrust, propellant and dry mass are multiplied by ``count``; CG and length
+    are those of one motor.  The tubes' radial offsets (which add
+    m d^2 to the roll inertia and nothing to the pitch inertia of a symmetric
+    cluster) are neglected.  Written to ``<cache>/ork-motors``; returns the
+    path and the designation (``4xC6``).
+    """
+    from ironbark_opt import net
+    from ironbark_opt.motors import write_eng
+    designation = f"{count}x{motor.designation or 'motor'}".replace(" ", "_")
+    maker = (motor.manufacturer or "unknown").replace(" ", "_")
+    scaled = dataclasses.replace(motor, thrust=count * np.asarray(motor.thrust, dtype=float),
+                                 propellant_mass=count * motor.propellant_mass_initial,
+                                 dry_mass=count * motor.dry_mass, designation=designation,
+                                 manufacturer=maker, source=str(path))
+    key = hashlib.sha1(f"{Path(path).resolve()}:{count}:{motor.designation}".encode()).hexdigest()[:12]
+    out = net.cache_dir() / "ork-motors" / f"cluster-{designation}-{key}.eng"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    write_eng(scaled, out)
+    return out, designation
+
+
+def geometry(doc: OrkDocument) -> Rocket:
+    """The Rocket (geometry; mass from :meth:`OrkDocument.dry_mass_properties`)."""
+    comps = [convert.body_component(c) for c in doc.rocket.body()]
+    guide = None
+    for c in doc.rocket.components():
+        if c.kind in FINS:
+            comps.append(convert.fin_set(c))
+        elif c.kind == "railbutton" and guide is None:
+            n, sep = c.geo["instances"]
+            if n >= 2 and sep > 0:
+                x0 = c.x + 0.5 * c.length
+                guide = RailButtons(x_fore=x0, x_aft=x0 + (n - 1) * sep, height=c.geo["height"],
+                                    name=c.name)
+    if guide is None:
+        for c in doc.rocket.components():
+            if c.kind == "launchlug" and c.geo["radius"] > c.geo["thickness"] >= 0:
+                guide = LaunchLug(x=c.x, length=c.geo["length"], outer_radius=c.geo["radius"],
+                                  inner_radius=c.geo["radius"] - c.geo["thickness"], name=c.name)
+                break
+    if guide is not None:
+        comps.append(guide)
+    return Rocket(doc.name, comps, mass_override=doc.dry_mass_properties())
+
+
+def recovery(doc: OrkDocument, config_id: str = "") -> tuple:
+    """Parachutes and streamers as RecoverySpecs for one configuration.
+
+    Deployment at ``apogee`` or ``ejection`` (the motor's delay charge, taken
+    at apogee) deploys at apogee, ``altitude`` at the given height on the way
+    down (after ``deploydelay``); ``never`` and lower-stage events are skipped.
+    """
+    out = []
+    for c in doc.rocket.components():
+        if c.kind not in ("parachute", "streamer"):
+            continue
+        g = c.geo
+        if c.kind == "parachute":
+            area = math.pi * (g["diameter"] / 2) ** 2
+            cd = PARACHUTE_CD if g["cd"] is None else g["cd"]
+        else:
+            area = g["strip_length"] * g["strip_width"]
+            cd = STREAMER_CD if g["cd"] is None else g["cd"]
+        if area * cd <= 0:
+            continue
+        event, altitude, delay = g["deploy_per_config"].get(
+            config_id, (g["deploy_event"], g["deploy_altitude"], g["deploy_delay"]))
+        if event not in ("apogee", "ejection", "altitude"):
+            continue
+        deploy = altitude if event == "altitude" else "apogee"
+        out.append(RecoverySpec(c.name, cd * area, deploy, delay))
+    return tuple(out)
+
+
+def _aero_table_path(rocket: Rocket, doc: OrkDocument) -> Path:
+    """Write the interim pressure-drag table of ``rocket`` (rebuilt on every load, a few
+    ms) to ``<cache>/ork-aero`` and return its path: AeroSpec names tables by file."""
+    from ironbark_opt import net
+    from ironbark_opt.aero.empirical_drag import pressure_drag_table
+    key = hashlib.sha1(str(doc.path.resolve()).encode()).hexdigest()[:12]
+    stem = net.cache_dir() / "ork-aero" / f"{doc.path.stem.replace(' ', '_')}-{key}"
+    stem.parent.mkdir(parents=True, exist_ok=True)
+    pressure_drag_table(rocket).save(stem)
+    return stem.with_suffix(".json")
+
+
+def rocket_file(doc: OrkDocument, config: str | None = None):
+    """A :class:`~ironbark_opt.rocket.toml_io.RocketFile` for one motor configuration."""
+    from ironbark_opt.rocket.toml_io import RocketFile
+    cfg = doc.config(config)
+    check_flyable(doc, cfg)
+    mount, entry = cfg.motors[0]
+    found = find_motor_file(entry.designation, entry.manufacturer, doc.path, entry.digest)
+    path, designation = found.path, found.motor.designation
+    if mount.cluster_count > 1:
+        path, designation = cluster_motor_file(path, found.motor, mount.cluster_count)
+    rocket = geometry(doc)
+    sim = doc.simulation_for(cfg)
+    launch = sim.launch if sim is not None else LaunchSpec()
+    aero = AeroSpec(table=_aero_table_path(rocket, doc))
+    spec = MotorSpec(file=path, designation=designation, nozzle_x=nozzle_x(mount, entry))
+    return RocketFile(rocket, spec, aero, launch, recovery(doc, cfg.config_id), BallastSpec(), doc.path)
+
+
+def load_ork(path, *, config: str | None = None):
+    """Read an .ork file and return the RocketFile of one motor configuration (numeric-only).
+
+    The RocketFile flies through :func:`ironbark_opt.vehicle.setup_from_file`:
+    geometry from the design, dry mass properties from OpenRocket's component
+    rules, the configuration's motor file, launch conditions from the first
+    simulation of that configuration, parachutes/streamers, and the interim
+    empirical pressure-drag table (:mod:`ironbark_opt.aero.empirical_drag`).
+
+    Parameters
+    ----------
+    path : path-like
+    config : str, optional
+        Configuration id (or its first characters), name, label such as
+        ``[C6-5]`` or a motor designation; default the file's selected one.
+
+    Raises
+    ------
+    InputError
+        Damaged file (naming the element path), unsupported feature (naming the
+        component), unknown configuration, or motor not found (naming it and
+        the places searched).
+    """
+    return rocket_file(read_ork(path), config)

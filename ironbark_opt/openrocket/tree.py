@@ -1,0 +1,183 @@
+"""Build the positioned component tree of an OpenRocket design (numeric-only).
+
+:func:`build_tree` walks ``<rocket>/<subcomponents>`` stage by stage,
+places body components end to end (stages follow each other, as in
+OpenRocket's ``AxialStage``), positions every inner and external component
+relative to its parent (:func:`.components.axial_position`) and resolves
+``auto`` radii the way OpenRocket does: a body tube takes its neighbour's
+radius, a nose cone's base or a transition's end the adjacent body radius,
+a coupler / bulkhead / engine block / centering ring's outside the parent's
+inner radius, and a centering ring's inside the largest inner tube beside
+it (``CenteringRing.getInnerRadius``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ironbark_opt.openrocket import components as oc
+from ironbark_opt.openrocket.xmlread import Element
+
+
+@dataclass
+class OrkRocket:
+    """The rocket of an .ork file: name and stages (``OrkComponent`` of kind ``stage``)."""
+
+    name: str
+    stages: list
+    element: Element
+
+    def components(self):
+        """All components, depth first (stages included)."""
+        for s in self.stages:
+            yield from s.walk()
+
+    def body(self):
+        """Body components in order from the nose tip."""
+        return [c for s in self.stages for c in s.children if c.kind in oc.BODY]
+
+    def length(self) -> float:
+        """Nose tip to the aft end of the last body component [m]."""
+        body = self.body()
+        return body[-1].x_end if body else 0.0
+
+    def motor_mounts(self):
+        return [c for c in self.components() if c.motors]
+
+
+def inner_radius(comp: oc.OrkComponent) -> float:
+    """Radius [m] available inside ``comp`` for its internal children."""
+    g = comp.geo
+    if comp.kind == "bodytube":
+        return 0.0 if g["filled"] else max(g["radius"] - g["thickness"], 0.0)
+    if comp.kind in ("nosecone", "transition"):
+        r = max(g["aft_radius"], g["fore_radius"])
+        return 0.0 if g["filled"] else max(r - g["thickness"], 0.0)
+    if comp.kind in ("innertube", "tubecoupler", "engineblock"):
+        return max(g["outer_radius"] - g["thickness"], 0.0)
+    if comp.kind == "centeringring":
+        return g["inner_radius"]
+    return g.get("outer_radius") or 0.0
+
+
+def outer_radius(comp: oc.OrkComponent) -> float:
+    """Outer radius [m] of a body component (the larger end) or a ring."""
+    g = comp.geo
+    if comp.kind == "bodytube":
+        return g["radius"]
+    if comp.kind in ("nosecone", "transition"):
+        return max(g["aft_radius"], g["fore_radius"])
+    return g.get("outer_radius") or 0.0
+
+
+def _make(el: Element, x_parent: float, len_parent: float, stage: int,
+          body_x: float | None = None) -> oc.OrkComponent:
+    if el.tag in oc.UNSUPPORTED:
+        name = el.text("name") or el.tag
+        raise el.error(f"{oc.UNSUPPORTED[el.tag]} '{name}' cannot be flown by Ironbark-Opt "
+                       f"yet; remove it (or fly the core vehicle alone)")
+    if el.tag not in oc.KNOWN:
+        raise el.error(f"unknown component <{el.tag}>; expected one of "
+                       f"{', '.join(sorted(oc.KNOWN))}")
+    geo, length = oc.parse_geometry(el)
+    x = body_x if body_x is not None else oc.axial_position(el, length, x_parent, len_parent)
+    comp = oc.OrkComponent(el.tag, el.text("name") or el.tag, el.path, x, length, stage, el,
+                           geo=geo, material=oc.material(el))
+    oc.parse_overrides(comp)
+    oc.parse_motor_mount(comp)
+    if el.tag == "innertube":
+        comp.cluster_count = geo.get("cluster", 1)
+    return comp
+
+
+def _children(parent: oc.OrkComponent, stage: int) -> None:
+    sub = parent.element.child("subcomponents")
+    if sub is None:
+        return
+    for el in sub.children():
+        if el.tag in oc.BODY or el.tag == "stage":
+            raise el.error(f"<{el.tag}> cannot sit inside <{parent.kind}> "
+                           f"'{parent.name}'; body components belong directly to a stage")
+        comp = _make(el, parent.x, parent.length, stage)
+        # children of a clustered inner tube exist once per tube (OpenRocket instancing)
+        comp.cluster_count *= parent.cluster_count
+        parent.children.append(comp)
+    # outer radii first (they may be the parent's inner radius), then ring insides
+    for comp in parent.children:
+        g = comp.geo
+        if comp.kind in oc.RINGS and g.get("outer_radius") is None:
+            g["outer_radius"] = inner_radius(parent)
+        if "thickness" in g and g["thickness"] is None and comp.kind in oc.RINGS:
+            g["thickness"] = g["outer_radius"]          # 'auto' wall: a solid disc
+    for comp in parent.children:
+        if comp.kind == "centeringring" and comp.geo["inner_radius"] is None:
+            tubes = [s for s in parent.children if s.kind == "innertube"
+                     and s.x < comp.x_end and s.x_end > comp.x]
+            comp.geo["inner_radius"] = max((s.geo["outer_radius"] for s in tubes), default=0.0)
+        # body radius under fins / lugs (the parent's outside)
+        comp.geo["parent_radius"] = outer_radius(parent)
+    for comp in parent.children:
+        _children(comp, stage)
+
+
+def _resolve_body_radii(body: list) -> None:
+    """Fill ``auto`` radii of body components from their neighbours (OpenRocket rules)."""
+    for _ in range(3):
+        for i, c in enumerate(body):
+            prev = body[i - 1] if i > 0 else None
+            nxt = body[i + 1] if i + 1 < len(body) else None
+            g = c.geo
+            prev_aft = None if prev is None else (prev.geo.get("radius") if prev.kind == "bodytube"
+                                                  else prev.geo.get("aft_radius"))
+            next_fore = None if nxt is None else (nxt.geo.get("radius") if nxt.kind == "bodytube"
+                                                  else nxt.geo.get("fore_radius"))
+            if c.kind == "bodytube" and g["radius"] is None:
+                g["radius"] = prev_aft if prev_aft is not None else next_fore
+            if c.kind in ("nosecone", "transition"):
+                if g["fore_radius"] is None:
+                    g["fore_radius"] = prev_aft
+                if g["aft_radius"] is None:
+                    g["aft_radius"] = next_fore
+    for c in body:
+        for key in ("radius", "fore_radius", "aft_radius"):
+            if key in c.geo and c.geo[key] is None:
+                raise c.element.error(f"'auto' {key.replace('_', ' ')} of '{c.name}' has no "
+                                      f"neighbouring component to take it from",
+                                      "radius" if key == "radius" else key.replace("_", ""))
+
+
+def build_tree(root: Element) -> OrkRocket:
+    """The positioned tree of the ``<rocket>`` in the file's root element."""
+    rocket_el = root.require("rocket")
+    sub = rocket_el.require("subcomponents")
+    stages_el = sub.children()
+    if not stages_el:
+        raise sub.error("the rocket has no stages")
+    stages, cursor = [], 0.0
+    for si, sel in enumerate(stages_el):
+        if sel.tag != "stage":
+            if sel.tag in oc.UNSUPPORTED:
+                _make(sel, 0.0, 0.0, si)
+            raise sel.error(f"expected <stage> under <rocket>, got <{sel.tag}>")
+        stage = oc.OrkComponent("stage", sel.text("name") or f"stage {si + 1}", sel.path,
+                                cursor, 0.0, si, sel)
+        oc.parse_overrides(stage)
+        ssub = sel.child("subcomponents")
+        for el in (ssub.children() if ssub is not None else []):
+            if el.tag not in oc.BODY:
+                _make(el, 0.0, 0.0, si)     # raises for unknown/unsupported tags
+                raise el.error(f"<{el.tag}> cannot sit directly in a stage; expected a nose "
+                               f"cone, body tube or transition")
+            comp = _make(el, 0.0, 0.0, si, body_x=cursor)
+            cursor += comp.length
+            stage.children.append(comp)
+        stage.length = cursor - stage.x
+        stages.append(stage)
+    ork = OrkRocket(rocket_el.text("name") or "rocket", stages, rocket_el)
+    body = ork.body()
+    if not body:
+        raise sub.error("the rocket has no body components (nose cone, body tube, transition)")
+    _resolve_body_radii(body)
+    for s in stages:
+        for comp in s.children:
+            _children(comp, s.stage)
+    return ork

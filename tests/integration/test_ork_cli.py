@@ -1,0 +1,85 @@
+"""``ironbark ork info`` and ``ironbark simulate FILE.ork`` end to end (no network)."""
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from ironbark_opt.cli import main
+from ironbark_opt.openrocket.xmlread import read_bytes
+
+DATA = Path(__file__).parents[1] / "data" / "ork"
+
+
+@pytest.fixture
+def env(monkeypatch, tmp_path):
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(DATA / "motors"))
+    return tmp_path
+
+
+def _weco_rocket(tmp_path) -> Path:
+    """'A simple model rocket' with its Estes C6 swapped for the WECO C6 we have a file for
+    (a test of the plumbing, not of the flight: the two C6 motors differ)."""
+    xml = read_bytes(DATA / "A simple model rocket.ork").replace(
+        b"<manufacturer>Estes</manufacturer>", b"<manufacturer>WECO</manufacturer>")
+    xml = re.sub(rb"<digest>[0-9a-f]*</digest>", b"", xml)     # as if re-picked by hand
+    path = tmp_path / "weco.ork"
+    path.write_bytes(xml)                      # plain-XML container
+    return path
+
+
+def test_info_json_contract(env):
+    res = CliRunner().invoke(main, ["ork", "info", str(DATA / "Two stage high power rocket.ork"),
+                                    "--json"])
+    assert res.exit_code == 0, res.output
+    info = json.loads(res.output)
+    assert info["length_m"] == pytest.approx(2.0511, abs=1e-3)
+    assert info["dry_mass_kg"] == pytest.approx(1.956, rel=0.01)   # OR: 2.574 - 0.618 kg
+    assert "launch_mass_kg" in info and "launch_cg_m" in info
+    designations = [[m["designation"] for m in c["motors"]] for c in info["configurations"]]
+    assert designations == [["H148R", "H148R"], ["I59WN", "I357T"]]
+
+
+def test_info_launch_mass_with_motor_file(env):
+    path = _weco_rocket(env)
+    res = CliRunner().invoke(main, ["ork", "info", str(path), "--json", "--config", "[C6-5]"])
+    assert res.exit_code == 0, res.output
+    info = json.loads(res.output)
+    # dry build-up + WECO C6 (0.022 kg total in its .eng header)
+    assert info["launch_mass_kg"] == pytest.approx(info["dry_mass_kg"] + 0.022, rel=1e-6)
+    assert info["dry_cg_m"] < info["launch_cg_m"] < info["length_m"]
+
+
+def test_info_human_and_errors(env, tmp_path):
+    res = CliRunner().invoke(main, ["ork", "info", str(DATA / "simplerocket_v1.2_gzip.ork")])
+    assert res.exit_code == 0, res.output
+    assert "Nose cone" in res.output and "[A8-3]" in res.output
+    bad = tmp_path / "bad.ork"
+    bad.write_bytes(b"PK\x03\x04 truncated")
+    res = CliRunner().invoke(main, ["ork", "info", str(bad)])
+    assert res.exit_code == 2
+    assert "damaged zip" in res.output
+
+
+@pytest.mark.slow
+def test_simulate_ork(env):
+    path = _weco_rocket(env)
+    res = CliRunner().invoke(main, ["simulate", str(path), "--config", "[C6-5]", "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.output)
+    # OpenRocket stored 316.6 m for the Estes C6-5; a different C6, so only a sanity band
+    assert 200.0 < out["apogee_agl_m"] < 400.0
+
+
+def test_info_reports_digest_verification(env):
+    res = CliRunner().invoke(main, ["ork", "info", str(DATA / "Airstart timing.ork"), "--json",
+                                    "--config", "99b8d6a6"])
+    assert res.exit_code == 0, res.output
+    motors = {m["designation"]: m for m in json.loads(res.output)["selected_motors"]}
+    assert motors["K550W"]["digest_verified"] is True
+    assert motors["I211W"]["file"] is None

@@ -1,0 +1,52 @@
+"""Interim empirical pressure drag (ironbark_opt.aero.empirical_drag) against its formulas."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ironbark_opt.aero.empirical_drag import pressure_ca, pressure_drag_table, rounded_le, stagnation_ratio
+from ironbark_opt.rocket import BodyTube, NoseCone, Rocket, TrapezoidalFins
+from ironbark_opt.rocket.fin_sections import FinSection
+
+
+def test_stagnation_ratio_values():
+    # Niskanen 2013 eq. 3.85 at M = 0.5: 1 + 0.25/4 + 0.0625/40; eq. 3.86 at M = 2
+    assert stagnation_ratio(0.5) == pytest.approx(1 + 0.0625 + 0.0625 / 40)
+    assert stagnation_ratio(2.0) == pytest.approx(1.84 - 0.19 + 0.166 / 16 + 0.035 / 64)
+    # the two branches nearly meet at M = 1 (1.275 vs 1.281)
+    assert abs(stagnation_ratio(0.999999) - stagnation_ratio(1.0)) < 0.01
+
+
+def test_rounded_leading_edge_is_continuous():
+    assert rounded_le(0.0) == pytest.approx(0.0)
+    # the published branches meet to 1.2e-3 at M = 0.9 ((0.19)^-0.417 - 1 = 0.9988)
+    assert float(rounded_le(0.9 - 1e-9)) == pytest.approx(float(rounded_le(0.9)), abs=2e-3)
+    assert float(rounded_le(1.0 - 1e-9)) == pytest.approx(float(rounded_le(1.0)), abs=0.03)
+
+
+def _rocket(nose_shape):
+    return Rocket("t", [NoseCone(shape=nose_shape, length=0.3, radius=0.05),
+                        BodyTube(x=0.3, length=1.0, radius=0.05),
+                        TrapezoidalFins(count=3, x=1.1, thickness=0.004, root_chord=0.2,
+                                        tip_chord=0.1, span=0.1, sweep_length=0.0,
+                                        section=FinSection(kind="square"))])
+
+
+def test_square_fins_and_tangent_ogive_at_low_mach():
+    r = _rocket("tangent_ogive")
+    frontal = 0.004 * 0.1 * 3 / r.reference_area()
+    # tangent ogive: zero joint angle -> no nose pressure drag; square fins: 0.85 q_stag/q
+    # on the leading edge plus base drag 0.12 + 0.13 M^2 on the trailing edge
+    ca = pressure_ca(r, np.array([0.0]))[0]
+    assert ca == pytest.approx((0.85 + 0.12) * frontal, rel=1e-6)
+
+
+def test_cone_adds_eq_3_81_and_table_is_pressure_only():
+    cone, ogive = _rocket("conical"), _rocket("tangent_ogive")
+    phi = np.arctan(0.05 / 0.3)
+    diff = pressure_ca(cone, np.array([0.3]))[0] - pressure_ca(ogive, np.array([0.3]))[0]
+    assert diff == pytest.approx(0.8 * np.sin(phi) ** 2, rel=1e-3)
+    table = pressure_drag_table(cone)
+    assert table.includes == ("pressure",)
+    assert float(table.evaluate("CA", 0.3, 0.0)) == pytest.approx(
+        pressure_ca(cone, np.array([0.3]))[0], rel=1e-3)

@@ -1,0 +1,282 @@
+"""OpenRocket .ork reader: containers, tree walk, positions, units, damaged inputs."""
+from __future__ import annotations
+
+import gzip
+import math
+import zipfile
+from functools import lru_cache
+from pathlib import Path
+
+import pytest
+
+from ironbark_opt.errors import InputError
+from ironbark_opt.openrocket import load_ork, read_ork
+from ironbark_opt.openrocket.ormass import ring
+from ironbark_opt.openrocket.xmlread import read_bytes
+
+DATA = Path(__file__).parents[1] / "data" / "ork"
+SIMPLE = DATA / "A simple model rocket.ork"
+
+
+@lru_cache(maxsize=None)
+def _xml(name: str) -> str:
+    return read_bytes(DATA / name).decode("utf-8")
+
+
+def _write(tmp_path, text: str, name="x.ork") -> Path:
+    p = tmp_path / name
+    p.write_text(text, encoding="utf-8")
+    return p
+
+
+def test_all_three_containers_give_the_same_rocket(tmp_path):
+    xml = _xml("A simple model rocket.ork").encode()
+    plain = tmp_path / "plain.ork"
+    plain.write_bytes(xml)
+    gz = tmp_path / "gz.ork"
+    gz.write_bytes(gzip.compress(xml))
+    zp = tmp_path / "zip.ork"
+    with zipfile.ZipFile(zp, "w") as zf:
+        zf.writestr("rocket.ork", xml)
+        zf.writestr("decals/x.png", b"\x89PNG")
+    masses = [read_ork(p).dry_mass_properties().mass for p in (SIMPLE, plain, gz, zp)]
+    assert max(masses) - min(masses) < 1e-12
+
+
+def test_old_gzip_format_1_2_reads_and_resolves_auto_radii():
+    doc = read_ork(DATA / "simplerocket_v1.2_gzip.ork")
+    assert doc.version == "1.2"
+    rings = [c for c in doc.rocket.components() if c.kind == "centeringring"]
+    # <outerradius>auto</outerradius>: body tube inner radius 0.0125 - 0.001
+    assert rings[0].geo["outer_radius"] == pytest.approx(0.0115)
+    # <innerradius>auto</innerradius>: the inner tube beside it, outer radius 0.0095
+    assert rings[0].geo["inner_radius"] == pytest.approx(0.0095)
+
+
+def test_positions_follow_openrocket_axial_methods():
+    doc = read_ork(SIMPLE)
+    comps = {c.name: c for c in doc.rocket.components()}
+    body = comps["Body tube"]
+    assert body.x == pytest.approx(0.1)                       # after the 0.1 m nose cone
+    fins = comps["Trapezoidal fin set"]                      # bottom, offset 0
+    assert fins.x == pytest.approx(body.x_end - fins.geo["root_chord"])
+    lug = comps["Launch lug"]                                 # middle, offset 0
+    assert lug.x + lug.length / 2 == pytest.approx(body.x + body.length / 2)
+    chute = comps["Parachute"]                                # top, offset 0.032
+    assert chute.x == pytest.approx(body.x + 0.032)
+
+
+def test_ring_mass_is_analytic_annulus():
+    mp = ring(1000.0, 0.02, 0.01, 0.5, 0.1)
+    m = 1000.0 * math.pi * (0.02 ** 2 - 0.01 ** 2) * 0.1
+    assert mp.mass == pytest.approx(m, rel=1e-12)
+    assert mp.cg_x == pytest.approx(0.55)
+    assert mp.I_axial == pytest.approx(m * (0.02 ** 2 + 0.01 ** 2) / 2)
+
+
+def test_stored_data_columns_are_looked_up_by_name():
+    # OR 22.02 and 24.12 write the columns in different orders
+    old = read_ork(DATA / "01.One-stage_OR22.02.ork").simulations[0].at_launch()
+    new = read_ork(SIMPLE).simulations[0].at_launch()
+    assert old["mass_kg"] == pytest.approx(0.526)
+    assert old["cg_x_m"] == pytest.approx(0.74)
+    assert new["mass_kg"] == pytest.approx(0.065)
+    assert new["motor_mass_kg"] == pytest.approx(0.016)
+    df = read_ork(SIMPLE).simulations[3].data()
+    assert {"time_s", "altitude_m", "vertical_velocity_mps"} <= set(df.columns)
+    assert df["altitude_m"].max() == pytest.approx(316.583, abs=0.5)
+
+
+def test_launch_conditions_units():
+    sim = read_ork(SIMPLE).simulations[0]
+    assert sim.launch.rail_length == pytest.approx(1.0)
+    assert sim.launch.inclination == pytest.approx(math.pi / 2)        # rod angle 0 from vertical
+    assert sim.launch.wind_from == pytest.approx(math.pi / 2)          # radians in the file
+    assert sim.launch.wind_speed == pytest.approx(2.0)
+    assert sim.launch.latitude == pytest.approx(math.radians(45.0))
+    assert sim.summary["apogee_m"] == pytest.approx(50.59)
+
+
+def test_launch_rod_angle_is_degrees_from_vertical(tmp_path):
+    text = _xml("A simple model rocket.ork").replace(
+        "<launchrodangle>0.0</launchrodangle>", "<launchrodangle>5.0</launchrodangle>", 1)
+    sim = read_ork(_write(tmp_path, text)).simulations[0]
+    assert math.degrees(sim.launch.inclination) == pytest.approx(85.0)
+
+
+def test_config_selection():
+    doc = read_ork(SIMPLE)
+    assert doc.config().label() == "[C6-5]"                 # the file's default
+    assert doc.config("da326836").label() == "[A8-3]"      # id prefix
+    assert doc.config("[B4-4]").config_id.startswith("05896b5a")
+    with pytest.raises(InputError, match="no single motor configuration"):
+        doc.config("Z9000")
+
+
+def test_truncated_zip_is_a_clear_error(tmp_path):
+    data = SIMPLE.read_bytes()
+    p = tmp_path / "cut.ork"
+    p.write_bytes(data[: len(data) // 3])
+    with pytest.raises(InputError, match="damaged zip|truncated"):
+        read_ork(p)
+
+
+def test_truncated_gzip_and_bad_xml(tmp_path):
+    data = (DATA / "simplerocket_v1.2_gzip.ork").read_bytes()
+    p = tmp_path / "cut.ork"
+    p.write_bytes(data[:600])
+    with pytest.raises(InputError, match="gzip"):
+        read_ork(p)
+    with pytest.raises(InputError, match="not well-formed"):
+        read_ork(_write(tmp_path, "<openrocket version='1.10'><rocket>"))
+
+
+def test_missing_required_element_names_the_path(tmp_path):
+    text = _xml("A simple model rocket.ork").replace("<length>0.3</length>", "", 1)
+    with pytest.raises(InputError) as err:
+        read_ork(_write(tmp_path, text))
+    assert err.value.field == "rocket/subcomponents/stage[1]/subcomponents/bodytube[1]/length"
+
+
+def test_negative_length_names_the_path(tmp_path):
+    text = _xml("A simple model rocket.ork").replace("<length>0.3</length>", "<length>-0.3</length>", 1)
+    with pytest.raises(InputError, match=">= 0") as err:
+        read_ork(_write(tmp_path, text))
+    assert err.value.field.endswith("bodytube[1]/length")
+
+
+def test_unknown_component_tag(tmp_path):
+    text = _xml("A simple model rocket.ork").replace("<masscomponent>", "<warpdrive>", 1) \
+        .replace("</masscomponent>", "</warpdrive>", 1)
+    with pytest.raises(InputError, match="unknown component <warpdrive>") as err:
+        read_ork(_write(tmp_path, text))
+    assert "warpdrive[1]" in err.value.field
+
+
+def test_not_a_number_and_unsupported_version(tmp_path):
+    text = _xml("A simple model rocket.ork").replace("<length>0.3</length>", "<length>long</length>", 1)
+    with pytest.raises(InputError, match="must be a number"):
+        read_ork(_write(tmp_path, text))
+    text = _xml("A simple model rocket.ork").replace('version="1.10"', 'version="9.9"', 1)
+    with pytest.raises(InputError, match="version 9.9"):
+        read_ork(_write(tmp_path, text))
+
+
+def test_unsupported_features_name_the_component(monkeypatch, tmp_path):
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    with pytest.raises(InputError, match="parallel boosters.*'Booster Set'"):
+        read_ork(DATA / "Parallel booster staging.ork")
+    with pytest.raises(InputError, match="multi-stage.*'Booster'") as err:
+        load_ork(DATA / "Two stage high power rocket.ork")
+    assert err.value.field == "rocket/subcomponents/stage[2]"
+    with pytest.raises(InputError, match=r"air-start.*I211W.*'38mm airstart'.*\+ 6 s"):
+        load_ork(DATA / "Airstart timing.ork")                # default: airstart @6s
+    with pytest.raises(InputError, match="one motor mount per flight.*I211W"):
+        load_ork(DATA / "Airstart timing.ork", config="99b8d6a6")   # both lit at launch
+
+
+def test_missing_motor_names_designation_and_places(monkeypatch, tmp_path):
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(tmp_path))
+    with pytest.raises(InputError, match="motor Estes C6 not found") as err:
+        load_ork(SIMPLE)
+    assert str(tmp_path) in str(err.value)
+
+
+def test_openrocket_motor_digest_is_reproduced(monkeypatch, tmp_path):
+    from ironbark_opt.openrocket.digest import eng_digests
+    from ironbark_opt.openrocket.motors import find_motor_file
+    doc = read_ork(DATA / "Airstart timing.ork")
+    entry = next(m for _, m in doc.configs[0].motors if m.designation == "K550W")
+    eng = DATA / "motors" / "tc_api_decoded_AeroTech_K550W.eng"
+    # the digest OpenRocket 24.12 stored in the .ork for this K550W
+    assert eng_digests(eng) == {"K550W": entry.digest} == {"K550W": "822e1d4ed7924f9dea7a62b5f5ff2823"}
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(DATA / "motors"))
+    hit = find_motor_file("K550W", "AeroTech", DATA / "Airstart timing.ork", entry.digest)
+    assert hit.verified is True and hit.path == eng
+    # same designation and maker, other data: found, flagged and warned about
+    c6 = DATA / "motors" / "WECO_C6.eng"
+    with pytest.warns(UserWarning, match="differs"):
+        hit = find_motor_file("C6", "WECO", DATA / "Airstart timing.ork", "0" * 32)
+    assert hit.verified is False and hit.path == c6
+
+
+def test_flight_data_for_overlays():
+    doc = read_ork(SIMPLE)
+    df = doc.flight_data("Simulation 4")
+    apogee = df["altitude_m"].max()
+    # the <flightdata maxaltitude> summary agrees with the stored time series
+    assert apogee == pytest.approx(doc.simulation("Simulation 4").summary["apogee_m"], abs=0.5)
+    assert df["time_s"].is_monotonic_increasing
+    with pytest.raises(InputError, match="no simulation 'nope'"):
+        doc.flight_data("nope")
+
+
+def test_absolute_position_and_pods(tmp_path):
+    text = _xml("A simple model rocket.ork").replace(
+        '<axialoffset method="middle">0.0</axialoffset>',
+        '<axialoffset method="absolute">0.25</axialoffset>', 1)
+    lug = next(c for c in read_ork(_write(tmp_path, text)).rocket.components()
+               if c.kind == "launchlug")
+    assert lug.x == pytest.approx(0.25)
+    text = _xml("A simple model rocket.ork").replace("<masscomponent>", "<podset>", 1) \
+        .replace("</masscomponent>", "</podset>", 1)
+    with pytest.raises(InputError, match="pods") as err:
+        read_ork(_write(tmp_path, text, "pods.ork"))
+    assert err.value.field.endswith("podset[1]")
+
+
+def test_cluster_flies_as_one_equivalent_motor(monkeypatch, tmp_path):
+    from ironbark_opt.vehicle import load_motor_for
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(DATA / "motors"))
+    text = _xml("Clustered motors.ork").replace("<manufacturer>Estes</manufacturer>",
+                                                "<manufacturer>WECO</manufacturer>")
+    text = text.replace("<digest>", "<!--").replace("</digest>", "-->")
+    rf = load_ork(_write(tmp_path, text), config="[C6-5]")
+    one = load_motor_for(type(rf.motor)(file=DATA / "motors" / "WECO_C6.eng"))
+    four = load_motor_for(rf.motor)
+    assert rf.motor.designation == "4xC6"
+    assert four.total_impulse == pytest.approx(4 * one.total_impulse, rel=1e-9)
+    assert float(four.mass(0.0)) == pytest.approx(4 * float(one.mass(0.0)), rel=1e-9)
+    assert float(four.cg(0.0)) == pytest.approx(float(one.cg(0.0)), rel=1e-9)
+
+
+def test_every_fixture_is_read_or_rejected_by_name():
+    for path in sorted(DATA.glob("*.ork")):
+        try:
+            doc = read_ork(path)
+        except InputError as err:
+            assert "parallel boosters" in str(err) and err.field.endswith("parallelstage[1]")
+            continue
+        assert doc.length() > 0 and doc.dry_mass_properties().mass > 0
+        assert doc.configs and doc.simulations
+
+
+def test_custom_atmosphere_and_bad_rod(tmp_path):
+    text = _xml("A simple model rocket.ork").replace(
+        '<atmosphere model="isa"/>',
+        '<atmosphere model="extendedisa"><basetemperature>300.0</basetemperature>'
+        '<basepressure>95000.0</basepressure></atmosphere>', 1)
+    launch = read_ork(_write(tmp_path, text)).simulations[0].launch
+    assert (launch.site_temperature, launch.site_pressure) == (300.0, 95000.0)
+    text = _xml("A simple model rocket.ork").replace(
+        "<launchrodlength>1.0</launchrodlength>", "<launchrodlength>0.0</launchrodlength>", 1)
+    with pytest.raises(InputError, match="must be > 0") as err:
+        read_ork(_write(tmp_path, text, "rod.ork"))
+    assert err.value.field == "simulations/simulation[1]/conditions/launchrodlength"
+
+
+def test_wind_direction_is_where_the_wind_comes_from():
+    # OpenRocket's own flight: winddirection = pi/2 with the rod launched into the wind.
+    # The rocket weathercocks east on the way up and drifts west under its chute,
+    # so the wind blows from the east: our wind_from = pi/2 (clockwise from north).
+    doc = read_ork(SIMPLE)
+    sim = doc.simulation("Simulation 4")
+    df = sim.data()
+    top = df["altitude_m"].idxmax()
+    assert df.loc[top, "east_m"] > 10.0 and df["east_m"].iloc[-1] < -50.0
+    assert sim.launch.wind_from == pytest.approx(math.pi / 2)
