@@ -45,7 +45,8 @@ def load_motor_for(spec):
 
 
 def load_aero_table(aero_spec, rocket):
-    """The AeroTable an :class:`AeroSpec` names: a table file or drag curves."""
+    """The AeroTable an :class:`AeroSpec` names: a table file, drag curves, or
+    (neither given) the empirical pressure-drag estimate from the geometry."""
     from ironbark_opt.aero.importers import from_cd_mach_csv
     from ironbark_opt.aero.table import AeroTable
 
@@ -55,7 +56,11 @@ def load_aero_table(aero_spec, rocket):
         return from_cd_mach_csv(aero_spec.drag_power_off, aero_spec.drag_power_on,
                                 reference_area=rocket.reference_area(),
                                 reference_length=2 * rocket.reference_radius())
-    return None
+    # No aerodynamic input: the empirical pressure/wave-drag estimate from the
+    # geometry (friction and base drag are added by the aero model); build a
+    # panel-method table with 'ironbark aero build' for the better model.
+    from ironbark_opt.aero.empirical_drag import pressure_drag_table
+    return pressure_drag_table(rocket)
 
 
 def rail_exit_offset(rocket, nozzle_x: float, rule: str) -> float:

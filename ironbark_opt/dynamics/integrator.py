@@ -18,12 +18,22 @@ import casadi as ca
 
 
 def rk4_step(rhs: ca.Function, name: str = "rk4") -> ca.Function:
-    """Classical 4th-order Runge–Kutta step ``(x, t, dt, p) -> x_next``.
+    """One step ``(x, t, dt, p) -> x_next``: classical 4th-order Runge–Kutta,
+    with the roll-damping term split off and advanced exactly.
 
     Parameters
     ----------
     rhs : casadi.Function
-        ``(x, t, p) -> (xdot, ...)``; only the first output is used.
+        ``(x, t, p) -> (xdot, ...)``; if it has an output ``c_roll`` [1/s]
+        (the roll-damping part of d(dw_x/dt)/dw_x, w_x = x[10]), that linear
+        term is integrated by Strang splitting: half a step of the exact
+        decay ``w_x *= exp(c_roll h/2)``, an RK4 step of the remaining
+        dynamics, another exact half step (Strang, SIAM J. Numer. Anal. 5,
+        1968).  Roll damping is the stiffest mode of light rockets with large
+        fins (c_roll ~ -170 1/s at burnout on the Kestrel example), which
+        would otherwise limit RK4 to steps under ~0.015 s; the splitting is
+        second-order accurate in the roll channel and leaves every other
+        channel's RK4 unchanged when the roll rate is zero.
     """
     nx = rhs.size1_in(0)
     np_ = rhs.size1_in(2)
@@ -32,14 +42,33 @@ def rk4_step(rhs: ca.Function, name: str = "rk4") -> ca.Function:
     t = sym.sym("t")
     dt = sym.sym("dt")
     p = sym.sym("p", np_)
-    k1 = rhs(x, t, p)[0]
-    k2 = rhs(x + dt / 2 * k1, t + dt / 2, p)[0]
-    k3 = rhs(x + dt / 2 * k2, t + dt / 2, p)[0]
-    k4 = rhs(x + dt * k3, t + dt, p)[0]
-    x_next = x + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+    split = "c_roll" in rhs.name_out()
+    if split:
+        e = ca.DM.zeros(nx)
+        e[10] = 1
+
+        def f(xx, tt):
+            out = rhs(xx, tt, p)
+            return out[0] - e * out[2] * xx[10]
+
+        def damp(xx, tt, h):
+            c = rhs(xx, tt, p)[2]
+            return xx + e * (ca.exp(c * h) - 1) * xx[10]
+    else:
+        def f(xx, tt):
+            return rhs(xx, tt, p)[0]
+
+        def damp(xx, tt, h):
+            return xx
+    x0 = damp(x, t, dt / 2)
+    k1 = f(x0, t)
+    k2 = f(x0 + dt / 2 * k1, t + dt / 2)
+    k3 = f(x0 + dt / 2 * k2, t + dt / 2)
+    k4 = f(x0 + dt * k3, t + dt)
+    x_next = damp(x0 + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4), t + dt, dt / 2)
     if sym is ca.SX:
-        # k2 and k3 share the time t + dt/2: everything that depends on time and
-        # parameters only (motor, mass properties) is evaluated once.
+        # k2 and k3 share the time t + dt/2, and the damping coefficient at the
+        # step's start shares the air data of k1: evaluated once.
         x_next = ca.cse(x_next)
     return ca.Function(name, [x, t, dt, p], [x_next], ["x", "t", "dt", "p"], ["x_next"])
 

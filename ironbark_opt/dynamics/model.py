@@ -44,8 +44,9 @@ class Steps:
         Target step during the burn (pitch oscillation near max q needs
         <= ~0.02 s for sub-metre apogee accuracy).
     n_coast : int
-        RK4 steps from burnout to the end of the coast horizon (about the
-        vacuum coast time; steps above ~0.15 s go unstable at max q).
+        Minimum RK4 steps from burnout to the end of the coast horizon
+        (about the vacuum coast time).  More are used when the flight is
+        stiffer: see :meth:`FlightModel.stable_step`.
     dt_descent : float [s]
         Step under parachute (and ballistic descent).
     """
@@ -76,12 +77,58 @@ class FlightModel:
         self.n_boost = max(20, int(math.ceil(burn / self.steps.dt_boost)))
         self.rhs = {ph: rhs_mod.build(setup, ph) for ph in ("rail", "boost", "coast")}
         self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
-        n = {"rail": self.steps.n_rail, "boost": self.n_boost, "coast": self.steps.n_coast}
-        self.trajectory = {ph: phase_trajectory(self.step[ph], n[ph], f"traj_{ph}") for ph in n}
-        self._run = dict(self.trajectory)
-        if jit:
-            self._run = {ph: compile_function(f) for ph, f in self.trajectory.items()}
+        self.trajectory, self._run = {}, {}
+        self.n_coast = None              # chosen from the flight's stiffness at the first run
+        self._set_trajectory("rail", self.steps.n_rail)
+        self._set_trajectory("boost", self.n_boost)
         self._build_events()
+
+    def _set_trajectory(self, phase: str, n: int):
+        self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}")
+        self._run[phase] = compile_function(self.trajectory[phase]) if self.jit else self.trajectory[phase]
+        for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0] == phase]:
+            del self._map_cache[key]
+
+    def stable_step(self, f: ca.Function, x, t, p) -> float:
+        """Largest step [s] for RK4 at state ``x`` (columns: the worst one counts).
+
+        ``1.5 / max |eig(df/dx)|`` of the right-hand side ``f``: inside RK4's
+        stability region (|lambda dt| < 2.78 on the real and imaginary axes)
+        with margin for accuracy.  Roll damping, the stiffest mode of light
+        rockets, is left out: the integrator advances it exactly.
+        """
+        cache = self.__dict__.setdefault("_jac_cache", {})
+        if f.name() not in cache:
+            xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", params.SIZE)
+            out = f(xs, ts, ps)
+            xdot = out[0]
+            if "c_roll" in f.name_out():          # advanced exactly by the integrator
+                xdot = xdot - ca.vertcat(ca.SX.zeros(10), out[2] * xs[10], ca.SX.zeros(2))
+            cache[f.name()] = ca.Function(f"jac_{f.name()}", [xs, ts, ps], [ca.jacobian(xdot, xs)])
+        jac = cache[f.name()]
+        x = np.atleast_2d(np.asarray(x, dtype=float).T).T
+        t = np.broadcast_to(np.asarray(t, dtype=float), (x.shape[1],))
+        p = np.asarray(p, dtype=float)
+        p = np.repeat(p[:, None], x.shape[1], axis=1) if p.ndim == 1 else p
+        lam = max(np.max(np.abs(np.linalg.eigvals(np.array(jac(x[:, i], t[i], p[:, i]))))) for i in range(x.shape[1]))
+        return 1.5 / lam if lam > 0 else np.inf
+
+    def _ensure_stable(self, x_b, t_b, t_end, P):
+        """First run: check the boost step and choose the coast steps from the
+        stiffness at burnout (the fastest point of the flight)."""
+        if self.n_coast is not None:
+            return False
+        rebuilt = False
+        dt_b = self.stable_step(self.rhs["boost"], x_b, t_b, P)
+        if self.steps.dt_boost > dt_b:
+            self.n_boost = int(math.ceil(self.n_boost * self.steps.dt_boost / dt_b))
+            self._set_trajectory("boost", self.n_boost)
+            rebuilt = True
+        dt_c = self.stable_step(self.rhs["coast"], x_b, t_b, P)
+        need = int(math.ceil(np.max(np.asarray(t_end) - np.asarray(t_b)) / dt_c))
+        self.n_coast = max(self.steps.n_coast, int(50 * math.ceil(need / 50)))
+        self._set_trajectory("coast", self.n_coast)
+        return rebuilt
 
     # ------------------------------------------------------------------ symbolic
     def initial_state(self, p):
@@ -219,6 +266,8 @@ class FlightModel:
         # Drag only shortens the coast below the vacuum time v_z / g; the margin
         # covers gravity falling off with height.
         t_end = t_b + vz_b / G0 + 2.0
+        if self._ensure_stable(x_b, t_b, t_end, p):
+            return self.run(p, descent=descent)
         for _ in range(3):
             X_coast = np.array(self._run["coast"](x_b, t_b, t_end, p))
             vz = np.array(self._mapped("vz", X_coast.shape[1])(X_coast)).ravel()
@@ -229,7 +278,7 @@ class FlightModel:
         else:
             raise SolverError("apogee not reached within the coast horizon")
         k = int(below[0])
-        dt_c = (t_end - t_b) / self.steps.n_coast
+        dt_c = (t_end - t_b) / self.n_coast
         x_k = x_b if k == 0 else X_coast[:, k - 1]
         t_k = t_b + k * dt_c
         vz_k = vz_b if k == 0 else vz[k - 1]
@@ -321,7 +370,9 @@ class FlightModel:
         x_b = np.array(self._mapped("boost", n)(x_r, t_r[None, :], burn[None, :], P)).reshape(13, n, nb)[:, :, -1]
         vz_b = np.array(self._mapped("vz", n)(x_b)).ravel()
         t_end = burn + vz_b / G0 + 2.0
-        nc = self.steps.n_coast
+        if self._ensure_stable(x_b[:, :1], burn[0], t_end.max(), P[:, :1]):
+            return self.run_batch(P, descent=descent)
+        nc = self.n_coast
         Xc = np.array(self._mapped("coast", n)(x_b, burn[None, :], t_end[None, :], P)).reshape(13, n, nc)
         vz = np.array(self._mapped("vz", n * nc)(Xc.reshape(13, n * nc))).reshape(n, nc)
         below = vz <= 0
@@ -417,6 +468,7 @@ class FlightModel:
             z_end = stages[s_i + 1][0] if s_i + 1 < len(stages) else 0.0
             f, step, chunk, cross = self._descent_functions(cd_area, label)
             dt = 0.02 if label == "ballistic" else self.steps.dt_descent
+            dt = min(dt, self.stable_step(f, x_cur, t_cur, P))
             chunk_n, cross_n = chunk.map(n), cross.map(n)
             done = x_cur[2] <= z_end
             x_k, t_k = x_cur.copy(), t_cur.copy()

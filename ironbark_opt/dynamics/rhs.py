@@ -109,7 +109,9 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
     -------
     casadi.Function
         Inputs ``x`` (13) [mixed SI], ``t`` [s], ``p`` (params.SIZE);
-        outputs ``xdot`` (13) and ``y`` (len(OUTPUT_NAMES)), SX-built.
+        outputs ``xdot`` (13, the complete derivative), ``y``
+        (len(OUTPUT_NAMES)) and ``c_roll`` [1/s], the roll-damping part of
+        d(dw_x/dt)/dw_x, which the integrator treats exactly; SX-built.
     """
     if phase not in PHASES:
         raise ValueError(f"phase must be one of {PHASES}, got {phase!r}")
@@ -174,6 +176,10 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
         m_jet = mdot * l_ne ** 2 * ca.vertcat(0, w_b[1], w_b[2])
         moment = m_aero + m_damp + m_roll + m_jet - ca.cross(w_b, inertia @ w_b) - idot @ w_b
         wdot = ca.solve(inertia, moment)
+        # d(wdot_x)/d(w_x) of the roll-damping term alone: on light rockets with
+        # large fins the stiffest mode of the whole flight (time constant of a
+        # few ms).  The integrator advances it exactly (see rk4_step).
+        c_roll = ca.solve(inertia, ca.vertcat(damp * clp, 0, 0))[0]
         vdot = f_b / m - ca.cross(w_b, v_b) + g_b
         xdot = ca.vertcat(s["t_l"] @ v_b, vdot, quaternion_rate(s["q"], w_b), wdot)
 
@@ -185,5 +191,7 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
         (s["t_l"] @ v_b)[2],
     )
     # Common-subexpression elimination: the aero pieces share many terms.
-    xdot, y = ca.cse(xdot), ca.cse(y)
-    return ca.Function(f"rhs_{phase}", [x, t, p], [xdot, y], ["x", "t", "p"], ["xdot", "y"])
+    if phase in ("rail", "descent"):
+        c_roll = 0 * t                          # no rotation in these phases
+    xdot, y, c_roll = ca.cse(xdot), ca.cse(y), ca.cse(c_roll)
+    return ca.Function(f"rhs_{phase}", [x, t, p], [xdot, y, c_roll], ["x", "t", "p"], ["xdot", "y", "c_roll"])

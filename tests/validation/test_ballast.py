@@ -11,8 +11,8 @@ from ironbark_opt.optimise.target import parse_target
 from ironbark_opt.vehicle import load_setup
 
 ROOT = Path(__file__).resolve().parents[2]
-ROCKETS = {"calisto": ROOT / "examples/calisto/calisto.toml"}
-TARGETS = {"calisto": ["3200m", "10000ft", "2600m"]}
+ROCKETS = {"calisto": ROOT / "examples/calisto/calisto.toml", "kestrel": ROOT / "examples/kestrel/kestrel.toml"}
+TARGETS = {"calisto": ["3200m", "10000ft", "2600m"], "kestrel": ["3150m", "10000ft", "2950m"]}
 
 
 @pytest.fixture(scope="module", params=sorted(ROCKETS))
