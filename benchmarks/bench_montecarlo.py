@@ -55,44 +55,22 @@ def ours(setup, spec, samples: int, jit: bool, descent: bool) -> tuple[float, fl
 def peer_time(setup, spec, samples: int):
     """Seconds per RocketPy sample (rebuild + Flight to apogee), or None."""
     try:
-        from rocketpy import Environment, Flight, Function, Rocket, SolidMotor
+        import rocketpy  # noqa: F401
     except ImportError:
         return None, None
+    from rocketpy_calisto import build, fly
     P = spec.sample(samples, setup.nominal_parameters(), np.random.default_rng(spec.seed))
     col = {name: P[params.index(name)] for name in params.NAMES}
     impulse, burn = float(setup.motor.total_impulse), float(setup.motor.burn_time)
-    drag_off = np.loadtxt(CALISTO / "powerOffDragCurve.csv", delimiter=",")
-    drag_on = np.loadtxt(CALISTO / "powerOnDragCurve.csv", delimiter=",")
     apogees = []
     t0 = time.perf_counter()
     for i in range(samples):
-        env = Environment(latitude=32.990254, longitude=-106.974998, elevation=1400)
-        env.set_atmospheric_model(type="custom_atmosphere", wind_u=float(col["wind_east"][i]),
-                                  wind_v=float(col["wind_north"][i]))
-        motor = SolidMotor(thrust_source=str(CALISTO / "Cesaroni_M1670.eng"), dry_mass=1.815,
-                           dry_inertia=(0.125, 0.125, 0.002), nozzle_radius=0.033, grain_number=5,
-                           grain_density=1815, grain_outer_radius=0.033, grain_initial_inner_radius=0.015,
-                           grain_initial_height=0.120, grain_separation=0.005,
-                           grains_center_of_mass_position=0.397, center_of_dry_mass_position=0.317,
-                           nozzle_position=0, burn_time=burn, throat_radius=0.011,
-                           reshape_thrust_curve=(burn * col["burn_time_scale"][i], impulse * col["thrust_scale"][i]),
-                           coordinate_system_orientation="nozzle_to_combustion_chamber")
-        k_i, k_d = col["dry_inertia_scale"][i], col["drag_scale"][i]
-        rocket = Rocket(radius=0.0635, mass=14.426 + col["dry_mass_offset"][i],
-                        inertia=(6.321 * k_i, 6.321 * k_i, 0.034 * k_i),
-                        power_off_drag=Function(np.column_stack([drag_off[:, 0], k_d * drag_off[:, 1]])),
-                        power_on_drag=Function(np.column_stack([drag_on[:, 0], k_d * drag_on[:, 1]])),
-                        center_of_mass_without_motor=-col["dry_cg_offset"][i],   # tail_to_nose axis
-                        coordinate_system_orientation="tail_to_nose")
-        rocket.add_motor(motor, position=-1.255)
-        rocket.set_rail_buttons(upper_button_position=0.0818, lower_button_position=-0.6182)
-        rocket.add_nose(length=0.55829, kind="vonKarman", position=1.278)
-        rocket.add_trapezoidal_fins(n=4, root_chord=0.120, tip_chord=0.060, span=0.110, position=-1.04956,
-                                    cant_angle=0.5)
-        rocket.add_tail(top_radius=0.0635, bottom_radius=0.0435, length=0.060, position=-1.194656)
-        flight = Flight(rocket=rocket, environment=env, rail_length=5.2,
-                        inclination=math.degrees(col["inclination"][i]), heading=math.degrees(col["heading"][i]),
-                        terminate_on_apogee=True)
+        env, rocket = build(wind_east=col["wind_east"][i], wind_north=col["wind_north"][i],
+                            thrust_scale=col["thrust_scale"][i], burn_time_scale=col["burn_time_scale"][i],
+                            dry_mass_offset=col["dry_mass_offset"][i], dry_inertia_scale=col["dry_inertia_scale"][i],
+                            drag_scale=col["drag_scale"][i], dry_cg_offset=col["dry_cg_offset"][i],
+                            impulse=impulse, burn_time=burn)
+        flight = fly(env, rocket, math.degrees(col["inclination"][i]), math.degrees(col["heading"][i]))
         apogees.append(flight.apogee - 1400.0)
     return (time.perf_counter() - t0) / samples, float(np.mean(apogees))
 
