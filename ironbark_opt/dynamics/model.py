@@ -30,6 +30,9 @@ from ironbark_opt.dynamics.integrator import compile_function, phase_trajectory,
 from ironbark_opt.errors import InputError, SolverError
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
+#: |lambda| dt allowed for RK4 (its stability region reaches 2.78 on the real
+#: and 2.83 on the imaginary axis); chosen by the RK4-vs-DOP853 validation.
+STABLE_LAMBDA_DT = 1.5
 
 
 @dataclass(frozen=True)
@@ -92,7 +95,7 @@ class FlightModel:
     def stable_step(self, f: ca.Function, x, t, p) -> float:
         """Largest step [s] for RK4 at state ``x`` (columns: the worst one counts).
 
-        ``1.5 / max |eig(df/dx)|`` of the right-hand side ``f``: inside RK4's
+        ``STABLE_LAMBDA_DT / max |eig(df/dx)|`` of the right-hand side ``f``: inside RK4's
         stability region (|lambda dt| < 2.78 on the real and imaginary axes)
         with margin for accuracy.  Roll damping, the stiffest mode of light
         rockets, is left out: the integrator advances it exactly.
@@ -111,7 +114,7 @@ class FlightModel:
         p = np.asarray(p, dtype=float)
         p = np.repeat(p[:, None], x.shape[1], axis=1) if p.ndim == 1 else p
         lam = max(np.max(np.abs(np.linalg.eigvals(np.array(jac(x[:, i], t[i], p[:, i]))))) for i in range(x.shape[1]))
-        return 1.5 / lam if lam > 0 else np.inf
+        return STABLE_LAMBDA_DT / lam if lam > 0 else np.inf
 
     def _ensure_stable(self, x_b, t_b, t_end, P):
         """First run: check the boost step and choose the coast steps from the
