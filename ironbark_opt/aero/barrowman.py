@@ -42,6 +42,9 @@ import numpy as np
 
 from ironbark_opt import _math as m
 from ironbark_opt.errors import InputError
+from ironbark_opt.validate import nonnegative as _non_negative
+from ironbark_opt.validate import number as _number
+from ironbark_opt.validate import positive as _positive
 
 MACH_SUBSONIC = 0.9        #: subsonic fin formulas up to this Mach number
 MACH_SUPERSONIC = 1.5      #: supersonic fin formulas from this Mach number
@@ -62,28 +65,6 @@ class Lift(NamedTuple):
     cn_alpha: object
     x_cp: object
     name: str = ""
-
-
-def _number(value, field: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"expected a number, got {value!r}", field=field) from None
-    if not math.isfinite(v):
-        raise InputError(f"expected a finite number, got {value!r}", field=field)
-    return v
-
-
-def _positive(value, field: str, unit: str = "m", allow_zero: bool = False) -> float:
-    v = _number(value, field)
-    if v < 0.0 or (v == 0.0 and not allow_zero):
-        raise InputError(f"must be {'>=' if allow_zero else '>'} 0 [{unit}], got {v:g}",
-                         field=field)
-    return v
-
-
-def _non_negative(value, field: str, unit: str = "m") -> float:
-    return _positive(value, field, unit, allow_zero=True)
 
 
 # ---------------------------------------------------------------- bodies of revolution

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ironbark_opt.errors import InputError
-from ironbark_opt.rocket import _validate as v
+from ironbark_opt import validate as v
 
 # NACA 00xx half-thickness coefficients (Abbott & von Doenhoff eq. 6.2)
 _NACA_A = (0.2969, -0.1260, -0.3516, 0.2843, -0.1015)

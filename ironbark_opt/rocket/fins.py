@@ -24,7 +24,7 @@ from typing import Callable
 import numpy as np
 
 from ironbark_opt.errors import InputError
-from ironbark_opt.rocket import _validate as v
+from ironbark_opt import validate as v
 from ironbark_opt.rocket.fin_sections import FinSection
 from ironbark_opt.rocket.mass import MassProperties
 

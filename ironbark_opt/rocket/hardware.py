@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ironbark_opt.errors import InputError
-from ironbark_opt.rocket import _validate as v
+from ironbark_opt import validate as v
 from ironbark_opt.rocket.mass import MassProperties
 
 

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ironbark_opt.rocket import _validate as v
+from ironbark_opt import validate as v
 from ironbark_opt.rocket.revolution import BodyOfRevolution
 from ironbark_opt.rocket.shapes import canonical_shape, shape_radius
 

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ironbark_opt.errors import InputError
-from ironbark_opt.rocket import _validate as v
+from ironbark_opt import validate as v
 from ironbark_opt.rocket.mass import MassProperties
 
 #: stations used for geometry and mass integrals of one component

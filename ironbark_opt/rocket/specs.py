@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ironbark_opt.errors import InputError
-from ironbark_opt.rocket import _validate as v
+from ironbark_opt import validate as v
 from ironbark_opt.rocket.materials import DEFAULT_ROUGHNESS
 
 #: ``SolidMotor`` keyword names a motor override may set (docs/ARCHITECTURE.md)

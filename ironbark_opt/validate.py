@@ -1,4 +1,4 @@
-"""Argument checks shared by the component constructors (numeric-only)."""
+"""Argument checks shared by constructors and model builders (numeric-only)."""
 from __future__ import annotations
 
 import math
