@@ -81,10 +81,37 @@ class FlightModel:
         self.rhs = {ph: rhs_mod.build(setup, ph) for ph in ("rail", "boost", "coast")}
         self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
         self.trajectory, self._run = {}, {}
-        self.n_coast = None              # chosen from the flight's stiffness at the first run
+        self.n_coast = None              # chosen from the nominal flight's stiffness below
         self._set_trajectory("rail", self.steps.n_rail)
         self._set_trajectory("boost", self.n_boost)
         self._build_events()
+        self._choose_grid(setup.nominal_parameters())
+
+    def _choose_grid(self, p):
+        """Fix the RK4 grid from the *nominal* flight (deterministic: the same
+        for every later run, batch, chunk or worker)."""
+        t_r = self.rail_exit(p)
+        t_b = float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
+        if t_r >= t_b:
+            raise InputError(f"motor burns out ({t_b:.2f} s) before rail exit ({t_r:.2f} s)", field="motor")
+        x_r = np.array(self._run["rail"](self._x0(p), 0.0, t_r, p))[:, -1]
+        x_b = np.array(self._run["boost"](x_r, t_r, t_b, p))[:, -1]
+        vz_b = float(self.vz_l(x_b))
+        if vz_b <= 0:
+            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs")
+        self._ensure_stable(x_b, t_b, t_b + vz_b / G0 + 2.0, p)
+
+    def discretisation(self) -> tuple[int, int]:
+        """``(n_boost, n_coast)``: RK4 steps of the boost and coast phases."""
+        return int(self.n_boost), int(self.n_coast)
+
+    def set_discretisation(self, n_boost: int, n_coast: int) -> None:
+        """Impose a grid (e.g. the one a client chose, on a cluster worker)."""
+        if (int(n_boost), int(n_coast)) == self.discretisation():
+            return
+        self.n_boost, self.n_coast = int(n_boost), int(n_coast)
+        self._set_trajectory("boost", self.n_boost)
+        self._set_trajectory("coast", self.n_coast)
 
     def _set_trajectory(self, phase: str, n: int):
         self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}")
@@ -164,6 +191,8 @@ class FlightModel:
         ps = ca.SX.sym("p", params.SIZE)
         vz = self.vz_l(self.step["coast"](x, t, h, ps))
         self._apex = ca.Function("apex", [x, t, h, ps], [vz, ca.jacobian(vz, h)])
+        if self.jit:
+            self._apex = compile_function(self._apex)
 
     # ------------------------------------------------------------------ numeric
     def _rail_travel(self, t_r: float, p: np.ndarray, geom) -> tuple[float, np.ndarray]:
@@ -397,12 +426,12 @@ class FlightModel:
         return out
 
     @staticmethod
-    def refine_in_step(func, x_k, t_k, h, dt, P, level=0.0, iterations: int = 8):
+    def refine_in_step(func, x_k, t_k, h, dt, P, level=0.0, iterations: int = 5):
         """Event inside a step: root ``h`` in [0, dt] of ``func(x_k, t_k, h, P)[0] = level``.
 
         Newton on the step length with the derivative from ``func``'s second
         output, clipped to the step, a fixed number of iterations (quadratic
-        convergence from the linear guess: 8 are far more than needed).  All
+        convergence from the linear guess reaches round-off in 3).  All
         columns at once; :meth:`run` and :meth:`run_batch` both call this, so
         their events agree to the last bit.
         """

@@ -168,7 +168,9 @@ def test_error_ellipse_of_a_known_gaussian():
 def test_bad_arguments(setup, model):
     spec = spec_from_dict(SMALL)
     with pytest.raises(InputError, match="executor"):
-        montecarlo(setup, spec, 2, executor="dask://localhost:8786", model=model)
+        montecarlo(setup, spec, 2, executor="dask://", model=model)            # no host:port
+    with pytest.raises(InputError, match="executor"):
+        montecarlo(setup, spec, 2, executor="spark://cluster", model=model)    # unknown scheme
     with pytest.raises(InputError, match="samples"):
         montecarlo(setup, spec, 0, model=model)
     with pytest.raises(InputError, match="band needs a target"):
