@@ -1,0 +1,145 @@
+"""``ironbark aero``: aerodynamic tables from geometry (panel solver).
+
+* ``ironbark aero build ROCKET.toml`` — mesh the rocket, sweep Mach x
+  alpha with the built-in panel solver (subsonic and supersonic, the
+  transonic gap bridged; supersonic through an external PANAIR with
+  ``--panair``), add friction and base drag, write an AeroTable (CSV +
+  JSON) into ``tables/``.
+* ``ironbark aero plot TABLE`` — CA, CN, Cm and CP position vs Mach and
+  alpha.
+"""
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import click
+import numpy as np
+
+from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.errors import InputError
+
+
+def _floats(text: str, name: str) -> np.ndarray:
+    try:
+        vals = np.array([float(v) for v in text.split(",") if v.strip()])
+    except ValueError as exc:
+        raise InputError(f"expected comma-separated numbers, got {text!r}", field=name) from exc
+    if len(vals) == 0 or np.any(np.diff(vals) <= 0):
+        raise InputError("expected a strictly increasing list", field=name)
+    return vals
+
+
+@click.group("aero")
+def aero_group():
+    """Aerodynamic tables from the rocket's geometry (panel solver)."""
+
+
+@aero_group.command("build")
+@click.argument("rocket", type=click.Path(dir_okay=False))
+@click.option("--mach", default="0.05,0.2,0.35,0.5,0.6,0.7,0.8,0.9", show_default=True,
+              help="Mach numbers (comma-separated); add e.g. 1.0,1.2,1.5,1.8,2.2 for a "
+                   "supersonic rocket (0.9 < M < 1.2 is bridged).")
+@click.option("--alpha-deg", default="0,2,4,6,8,12,16,20", show_default=True,
+              help="Total angles of attack [deg] (comma-separated).")
+@click.option("--out", "out", default=None, type=click.Path(),
+              help="Table path stem (default tables/<rocket name>).")
+@click.option("--workers", default=2, show_default=True, help="Parallel processes (Mach).")
+@click.option("--refine", default=1.0, show_default=True, help="Mesh refinement factor.")
+@click.option("--panair", "use_panair", is_flag=True,
+              help="Solve the supersonic Mach numbers with an external PANAIR (IRONBARK_PANAIR).")
+@click.option("--no-progress", is_flag=True, help="No progress bar.")
+@json_option
+@handle_errors
+def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress, as_json):
+    """Build the AeroTable of ROCKET (a rocket TOML file)."""
+    from ironbark_opt.aero.base_drag import BaseDrag
+    from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
+    from ironbark_opt.rocket import load_rocket_toml
+    from panair.geometry_adapter import from_rocket, is_symmetric
+    from panair.mesh import MeshOptions
+    from panair.sweep import build_table
+
+    mach_v = _floats(mach, "--mach")
+    alpha_v = np.radians(_floats(alpha_deg, "--alpha-deg"))
+    rf = load_rocket_toml(rocket)
+    rk = rf.rocket
+    geom = from_rocket(rk)
+    sref = rk.reference_area()
+    lref = 2.0 * rk.reference_radius()
+    rough = rf.aero.surface_roughness
+    comps = [FrictionComponent.body("body", rk.length(), 2.0 * rk.max_radius(),
+                                    roughness=rough)]
+    for fs in rk.fin_sets():
+        comps.append(FrictionComponent.fins(fs.name, 2.0 * fs.count * fs.planform_area(),
+                                            fs.mean_aerodynamic_chord(), fs.thickness,
+                                            roughness=rough))
+    friction = FrictionDrag(comps, sref, rf.aero.re_transition)
+    r_base = float(geom.body.r[-1])
+    base = BaseDrag(math.pi * r_base**2, sref)
+    table = build_table(geom, mach_v, alpha_v, sref=sref, lref=lref, xref=0.0,
+                        friction=friction, base_drag=base, symmetric=is_symmetric(geom),
+                        options=MeshOptions(refine=refine), workers=workers,
+                        progress=not no_progress and not as_json, use_panair=use_panair,
+                        extra_metadata={"rocket_file": str(rocket)})
+    if out is None:
+        slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", rk.name).strip("_") or "rocket"
+        out = Path("tables") / slug
+    Path(out).parent.mkdir(parents=True, exist_ok=True)
+    csv_path, json_path = table.save(out)
+    md = table.metadata
+    result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
+              "mach": mach_v, "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
+              "reference_length_m": lref, "moment_reference_x_m": 0.0}
+    human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
+             f"{md['panels']} panels, includes {', '.join(table.includes)}")
+    emit(result, as_json, human)
+
+
+@aero_group.command("plot")
+@click.argument("table", type=click.Path(dir_okay=False))
+@click.option("--out", "out", default=None, type=click.Path(), help="Image file (default TABLE.png).")
+@json_option
+@handle_errors
+def plot(table, out, as_json):
+    """Plot CA, CN, Cm and CP position of TABLE vs Mach and alpha."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ironbark_opt.aero.table import AeroTable
+    t = AeroTable.load(table)
+    for name in ("CA", "CN", "Cm"):
+        if not t.has(name):
+            raise InputError(f"table has no '{name}' coefficient", source=table, field=name)
+    a_deg = np.degrees(t.alpha)
+    fig, ax = plt.subplots(2, 2, figsize=(11, 8))
+    for j, a in enumerate(a_deg):
+        ax[0, 0].plot(t.mach, t.values("CA")[:, j], "o-", ms=3, label=f"{a:g} deg")
+    ax[0, 0].set(xlabel="Mach [-]", ylabel="CA [-]", title="axial force")
+    ax[0, 0].legend(fontsize=7, title="alpha")
+    for i, m in enumerate(t.mach):
+        ax[0, 1].plot(a_deg, t.values("CN")[i], "o-", ms=3, label=f"M {m:g}")
+        ax[1, 0].plot(a_deg, t.values("Cm")[i], "o-", ms=3, label=f"M {m:g}")
+    ax[0, 1].set(xlabel="alpha [deg]", ylabel="CN [-]", title="normal force")
+    ax[0, 1].legend(fontsize=7)
+    ax[1, 0].set(xlabel="alpha [deg]", ylabel=f"Cm [-] about x = {t.moment_reference_x:g} m",
+                 title="pitching moment")
+    cn, cm = t.values("CN"), t.values("Cm")
+    ok = np.abs(cn) > 1e-9
+    xcp = np.where(ok, t.moment_reference_x - cm / np.where(ok, cn, 1.0) * t.reference_length,
+                   np.nan)
+    for j, a in enumerate(a_deg):
+        if a > 0:
+            ax[1, 1].plot(t.mach, xcp[:, j], "o-", ms=3, label=f"{a:g} deg")
+    ax[1, 1].set(xlabel="Mach [-]", ylabel="x_cp [m aft of nose tip]", title="centre of pressure")
+    ax[1, 1].legend(fontsize=7, title="alpha")
+    fig.suptitle(f"{Path(table).stem}: includes {', '.join(t.includes)}")
+    fig.tight_layout()
+    out = Path(out) if out else Path(table).with_suffix(".png")
+    fig.savefig(out, dpi=120)
+    emit({"image": str(out)}, as_json, f"wrote {out}")
+
+
+COMMANDS = [aero_group]

@@ -1,0 +1,53 @@
+"""``ironbark_opt.rocket.Rocket`` -> :class:`panair.mesh.RocketGeometry`.
+
+Numeric-only.  Trapezoidal fin sets are meshed as they are; elliptical
+and free-form fins are not meshed yet (InputError).  Fin cant is not
+meshed: it changes roll moments, not CA/CN/Cm to first order, and the
+table has no roll coefficients.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ironbark_opt.errors import InputError
+
+from .mesh import BodyGeometry, FinGeometry, RocketGeometry
+
+__all__ = ["from_rocket"]
+
+
+def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
+    """Mesher geometry of a Rocket.
+
+    Parameters
+    ----------
+    rocket : ironbark_opt.rocket.Rocket
+    n_profile : int
+        Stations of ``Rocket.body_profile`` used for the body shape.
+
+    Returns
+    -------
+    RocketGeometry (lengths [m]).
+    """
+    x, r = rocket.body_profile(n_profile)
+    fins = []
+    for k, fs in enumerate(rocket.fin_sets()):
+        kind = type(fs).__name__
+        if kind != "TrapezoidalFins":
+            raise InputError(f"fin set '{fs.name}' is {kind}: only trapezoidal fins are meshed "
+                             "by the panel mesher so far", field=f"fin_sets[{k}]")
+        sec = fs.section
+        section = {"square": "square", "rounded": "rounded", "airfoil": "airfoil",
+                   "double_wedge": "double_wedge"}[sec.kind]
+        # roll: with an even count no fin lies in the x-z plane (a half model is
+        # possible); an odd count is meshed with a fin on top (full model)
+        roll = np.pi / fs.count if fs.count % 2 == 0 else 0.0
+        fins.append(FinGeometry(int(fs.count), fs.root_chord, fs.tip_chord, fs.span,
+                                fs.sweep_length, fs.x, fs.thickness, roll=roll, section=section,
+                                le_bevel=sec.le_bevel, te_bevel=sec.te_bevel))
+    return RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name)
+
+
+def is_symmetric(geom: RocketGeometry) -> bool:
+    """True if a half model (x-z symmetry plane) is valid for ``geom``."""
+    return all(int(f.count) % 2 == 0 for f in geom.fins)

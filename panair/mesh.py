@@ -1,0 +1,362 @@
+"""Rocket geometry -> structured panel networks.
+
+The geometry is described here on its own terms (so the mesher does not
+depend on the rocket package): a body of revolution ``x, r(x)`` [m] (x aft
+of the nose tip) ending in a flat base, plus fin sets.
+:func:`panair.geometry_adapter.from_rocket` converts an
+``ironbark_opt.rocket.Rocket``.
+
+Networks follow PANAIR's rule (normal = line direction x point direction,
+pointing into the flow) and its network kinds:
+
+* ``body`` (surface): meridian lines from the bottom (theta = 0, z < 0)
+  through +y; points along x.  A blunt nose gets a ``nosecap``.
+* ``base`` (base) and ``basewake`` (the wake tube shed from the base edge,
+  ``MeshOptions.wake_length`` body lengths long).
+* per fin ``finK`` (surface): spanwise lines root -> tip, points around
+  the section from the lower trailing edge over the leading edge to the
+  upper trailing edge; ``capK`` (flat tip cap) and ``wakeK`` (trailing-edge
+  wake).  Fin sections: ``double_wedge`` (diamond, or hexagonal with
+  bevels), ``square``/``rounded`` (real blunt leading edge; the blunt
+  trailing edge is closed by a wedge over the last thickness of chord so
+  the panel method has a Kutta edge — the trailing-edge base drag belongs
+  to the base-drag model), ``airfoil`` (NACA 00xx).  Fin roots are cut on
+  the body surface: two body lines per fin follow the root section, so
+  body and fin share their junction points; the body panels between them
+  (under the root) stay in the subsonic solve but carry no force.  Only
+  trapezoidal planforms; fin cant is not meshed.
+
+Half model (``symmetric=True``): y >= 0 only, for configurations
+symmetric about the x-z plane with no fin in that plane (e.g. four fins at
+45 deg).  Numeric-only.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ironbark_opt.errors import InputError
+
+from .lawgs import Network
+
+__all__ = ["BodyGeometry", "FinGeometry", "RocketGeometry", "mesh_rocket", "MeshOptions"]
+
+
+@dataclass(frozen=True)
+class BodyGeometry:
+    """Body of revolution.
+
+    Parameters
+    ----------
+    x : array [m]
+        Stations aft of the nose tip, non-decreasing (a repeated x is a step).
+    r : array [m]
+        Radius at each station (>= 0); the body ends in a flat base of
+        radius ``r[-1]`` (0 = closed tail).
+    """
+
+    x: np.ndarray
+    r: np.ndarray
+
+    def __post_init__(self):
+        x = np.asarray(self.x, float)
+        r = np.asarray(self.r, float)
+        if x.ndim != 1 or x.shape != r.shape or len(x) < 2:
+            raise InputError("body x and r must be 1-D arrays of equal length >= 2", field="body")
+        if np.any(np.diff(x) < 0) or np.any(r < 0) or not np.all(np.isfinite(x + r)):
+            raise InputError("body x must be non-decreasing and r >= 0, finite", field="body")
+        if r.max() <= 0:
+            raise InputError("body has zero radius everywhere", field="body.r")
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "r", r)
+
+    def radius_at(self, x):
+        """Radius [m] at ``x`` [m] (the aft value at a step)."""
+        return np.interp(x, self.x, self.r)
+
+
+@dataclass(frozen=True)
+class FinGeometry:
+    """A set of identical trapezoidal fins, equally spaced in roll.
+
+    Parameters
+    ----------
+    count : int
+    root_chord, tip_chord, span, sweep : float [m]
+        ``sweep`` = axial distance root LE -> tip LE; span from the body
+        surface.
+    x_root : float [m]
+        Root leading edge aft of the nose tip.
+    thickness : float [m]
+    roll : float [rad]
+        Roll angle of the first fin from +z (up) toward +y.
+    section : str
+        ``double_wedge``, ``square``, ``rounded`` or ``airfoil``.
+    le_bevel, te_bevel : float [m] or None
+        Bevel lengths of a hexagonal section (None: sharp diamond).
+    """
+
+    count: int
+    root_chord: float
+    tip_chord: float
+    span: float
+    sweep: float
+    x_root: float
+    thickness: float
+    roll: float = np.pi / 4
+    section: str = "double_wedge"
+    le_bevel: float | None = None
+    te_bevel: float | None = None
+
+    def __post_init__(self):
+        for name in ("root_chord", "span", "thickness"):
+            if not getattr(self, name) > 0:
+                raise InputError(f"fin {name} must be > 0 [m]", field=f"fins.{name}")
+        if self.tip_chord < 0 or int(self.count) < 1:
+            raise InputError("fin tip_chord >= 0 [m] and count >= 1 required", field="fins")
+        if self.section not in ("double_wedge", "square", "rounded", "airfoil"):
+            raise InputError(f"unknown fin section {self.section!r}", field="fins.section")
+
+    def half_thickness(self, xi, chord):
+        """Half thickness [m] at ``xi`` [m] aft of the local leading edge."""
+        t, c = self.thickness, chord
+        s = np.clip(xi / max(c, 1e-300), 0.0, 1.0)
+        if self.section == "double_wedge":
+            le = c / 2 if self.le_bevel is None else self.le_bevel
+            te = c / 2 if self.te_bevel is None else self.te_bevel
+            k = min(1.0, c / (le + te)) if le + te > 0 else 1.0
+            le, te = le * k, te * k
+            h = np.minimum(np.minimum(xi / max(le, 1e-300), (c - xi) / max(te, 1e-300)), 1.0)
+            return 0.5 * t * np.clip(h, 0.0, 1.0)
+        if self.section == "airfoil":   # NACA 00xx, Abbott & von Doenhoff (1959) eq. 6.2, closed TE
+            return 5 * t * (0.2969 * np.sqrt(s) - 0.1260 * s - 0.3516 * s**2
+                            + 0.2843 * s**3 - 0.1036 * s**4)
+        tail = np.clip((c - xi) / min(t, c / 2), 0.0, 1.0)       # TE closure wedge
+        if self.section == "rounded":
+            nose = np.sqrt(np.clip(1 - (1 - np.minimum(xi, t / 2) / (t / 2)) ** 2, 0, 1))
+            return 0.5 * t * np.minimum(nose, tail)
+        return 0.5 * t * np.where(xi <= 0, 0.0, tail)
+
+
+@dataclass(frozen=True)
+class RocketGeometry:
+    """Body plus fin sets; ``name`` for titles."""
+
+    body: BodyGeometry
+    fins: tuple = ()
+    name: str = "rocket"
+
+
+@dataclass(frozen=True)
+class MeshOptions:
+    """Mesh density.  ``refine`` multiplies every count (2 = twice finer).
+
+    n_theta : panels around the full circle; n_nose : axial panels on the
+    nose; body_spacing : axial panel length on the rest of the body
+    [calibers]; n_chord : chordwise panels per fin side; n_span : spanwise
+    panels per fin; wake_length : wake length [body lengths];
+    chord_clustering : 0 uniform ... 1 full cosine clustering of the
+    chordwise stations at the fin leading and trailing edges.
+    """
+
+    n_theta: int = 32
+    n_nose: int = 20
+    body_spacing: float = 0.4
+    n_chord: int = 30
+    n_span: int = 6
+    wake_length: float = 5.0
+    refine: float = 1.0
+    chord_clustering: float = 1.0
+
+    def scaled(self, name):
+        return max(2, int(round(getattr(self, name) * self.refine)))
+
+
+def _chord_stations(n, clustering):
+    """Chordwise stations in [0, 1]: blend of uniform and cosine spacing."""
+    s = np.linspace(0.0, 1.0, n + 1)
+    return (1 - clustering) * s + clustering * 0.5 * (1 - np.cos(np.pi * s))
+
+
+def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
+    x, r = body.x, body.r
+    d = 2 * r.max()
+    # nose = up to the first station where r reaches its first plateau or max
+    keep = [x[0]]
+    n_nose = opt.scaled("n_nose")
+    i_nose = int(np.argmax(r >= 0.999 * r.max()))
+    x_nose = x[i_nose] if i_nose > 0 else x[0]
+    if x_nose > x[0]:
+        s = 0.5 * (1 - np.cos(np.linspace(0, np.pi, n_nose + 1)))
+        keep.extend(x[0] + s[1:] * (x_nose - x[0]))
+    step = opt.body_spacing * d / opt.refine
+    # keep the corners of the profile after the nose (joints, transitions,
+    # boattails: where the slope changes), not every station of a dense profile
+    slope = np.diff(r) / np.maximum(np.diff(x), 1e-12 * d)
+    corner = np.zeros(len(x), bool)
+    corner[1:-1] = np.abs(np.diff(slope)) > 1e-3
+    corner[[0, -1]] = True
+    breaks = [xx for xx, c in zip(x, corner) if c and xx > x_nose]
+    # curved parts after the nose (ogive boattails): at most every 4th station
+    sloped = np.zeros(len(x), bool)
+    sloped[:-1] |= np.abs(slope) > 1e-6
+    sloped[1:] |= np.abs(slope) > 1e-6
+    breaks += [xx for xx in x[sloped][::4] if xx > x_nose]
+    for f in fins:
+        breaks += [f.x_root, f.x_root + f.root_chord]
+        c = f.root_chord
+        u = _chord_stations(opt.scaled("n_chord"), opt.chord_clustering)
+        breaks.extend(f.x_root + u * c)          # the fin root's own chordwise stations
+    pts = np.unique(np.round(np.concatenate([keep, breaks]), 12))
+    out = [pts[0]]
+    for a, b in zip(pts[:-1], pts[1:]):
+        k = max(1, int(np.ceil((b - a) / step - 1e-9))) if a >= x_nose else 1
+        out.extend(a + (b - a) * np.arange(1, k + 1) / k)
+    xs = np.unique(np.round(np.array(out), 12))
+    return xs
+
+
+def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
+                options: MeshOptions | None = None) -> list[Network]:
+    """Panel networks of a rocket (see the module docstring for layout).
+
+    Parameters
+    ----------
+    geom : RocketGeometry
+        Lengths in [m].
+    symmetric : bool
+        Half model y >= 0 (for :func:`panair.solver.panels.build_panels`
+        with ``symmetric=True``).
+    options : MeshOptions
+
+    Returns
+    -------
+    list of Network
+
+    Raises
+    ------
+    InputError
+        A half model with a fin in (or crossing) the symmetry plane.
+    """
+    opt = options or MeshOptions()
+    body = geom.body
+    xs = _axial_stations(body, geom.fins, opt)
+    rs = body.radius_at(xs)
+    n_th = opt.scaled("n_theta")
+    th_end = np.pi if symmetric else 2 * np.pi
+    n_lines = n_th // 2 + 1 if symmetric else n_th + 1
+    theta = np.linspace(0.0, th_end, n_lines)            # from the bottom (-z) through +y
+    fin_angles = []
+    for f in geom.fins:
+        for k in range(int(f.count)):
+            phi = (f.roll + 2 * np.pi * k / f.count) % (2 * np.pi)     # from +z toward +y
+            th = (np.pi - phi) % (2 * np.pi)
+            if symmetric:
+                y_root = np.sin(phi) * body.radius_at(f.x_root)
+                if abs(y_root) <= f.thickness / 2 + 1e-12 * body.r.max():
+                    raise InputError("half model: a fin lies in the symmetry plane y = 0; "
+                                     "roll the fins (e.g. roll = 45 deg for 4 fins) or mesh "
+                                     "the full configuration", field="fins.roll")
+                if y_root < 0:
+                    continue                           # mirror image of a y > 0 fin
+            fin_angles.append((f, phi, th))
+    # Fin roots: two body lines per fin that open from the fin's centre line
+    # to the root section's surface (angle asin(h/r)) along the root chord,
+    # so body and fin share their junction points (a watertight junction);
+    # the footprint between them is inside the fin: no force, no gradient.
+    eps = 1e-9
+    if not symmetric and fin_angles:
+        # put the seam of the full circle mid-way in the widest gap between fins
+        ths = np.sort([th for _, _, th in fin_angles])
+        gaps = np.diff(np.append(ths, ths[0] + 2 * np.pi))
+        k = int(np.argmax(gaps))
+        theta0 = ths[k] + 0.5 * gaps[k]
+        theta = theta0 + np.linspace(0.0, 2 * np.pi, n_lines)
+        fin_angles = [(f, phi, theta0 + (th - theta0) % (2 * np.pi)) for f, phi, th in fin_angles]
+    for (_, _, th) in fin_angles:
+        theta = np.concatenate([theta, [th - eps, th + eps]])
+    theta = np.unique(np.round(theta, 12))
+    T, X = np.meshgrid(theta, xs, indexing="ij")
+    R = np.interp(X, xs, rs)
+    no_force = np.zeros((len(theta) - 1, len(xs) - 1), bool)
+    xc = 0.5 * (xs[:-1] + xs[1:])
+    for f, phi, th in fin_angles:
+        xi = xs - f.x_root
+        h = np.where((xi >= 0) & (xi <= f.root_chord), f.half_thickness(xi, f.root_chord), 0.0)
+        dang = np.arcsin(np.clip(h / np.maximum(rs, 1e-300), 0.0, 1.0))
+        lo = int(np.argmin(np.abs(theta - (th - eps))))
+        hi = int(np.argmin(np.abs(theta - (th + eps))))
+        T[lo] = th - dang
+        T[hi] = th + dang
+        inside = (xc > f.x_root) & (xc < f.x_root + f.root_chord)
+        no_force[lo:hi, :] |= inside[None, :]
+    pts = np.stack([X, R * np.sin(T), -R * np.cos(T)], axis=-1)
+    nets = []
+    nets.append(Network("body", pts, "surface", {"no_force": no_force}))
+    if rs[0] > 1e-9 * rs.max():
+        rr = np.linspace(rs[0], 0.0, 3)
+        cap = np.stack([np.full((len(theta), 3), xs[0]),
+                        rr[None, :] * np.sin(theta)[:, None],
+                        -rr[None, :] * np.cos(theta)[:, None]], axis=-1)
+        nets.append(Network("nosecap", cap[::-1], "surface"))
+    length = xs[-1] - xs[0]
+    if rs[-1] > 1e-9 * rs.max():
+        rb = np.linspace(rs[-1], 0.0, 3)
+        base = np.stack([np.full((3, len(theta)), xs[-1]),
+                         rb[:, None] * np.sin(theta)[None, :],
+                         -rb[:, None] * np.cos(theta)[None, :]], axis=-1)
+        nets.append(Network("base", base[:, ::-1], "base"))
+        ring = pts[:, -1]
+        far = ring + np.array([opt.wake_length * length, 0, 0])
+        nets.append(Network("basewake", np.stack([ring, far], axis=1), "wake"))
+    for k, (f, phi, th) in enumerate(fin_angles):
+        nets.extend(_fin_networks(f, phi, body, opt, k, length))
+    return nets
+
+
+def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
+    e_r = np.array([0.0, np.sin(phi), np.cos(phi)])      # spanwise
+    e_t = np.array([0.0, np.cos(phi), -np.sin(phi)])     # thickness (e_r x e_t = -x ... any)
+    n_c = opt.scaled("n_chord")
+    n_s = opt.scaled("n_span")
+    s = np.linspace(0.0, 1.0, n_s + 1)
+    # chordwise parameter clustered at LE and TE
+    u = _chord_stations(n_c, opt.chord_clustering)
+    lines = []
+    for sj in s:
+        chord = f.root_chord + sj * (f.tip_chord - f.root_chord)
+        xle = f.x_root + sj * f.sweep
+        xi = u * chord
+        h = f.half_thickness(xi, chord)
+        if chord <= 0:
+            h = np.zeros_like(xi)
+        r_root = body.radius_at(xle + xi)
+        rad = np.sqrt(np.maximum(r_root**2 - h**2, 0.0)) + sj * f.span
+        lower = (xle + xi)[:, None] * np.array([1.0, 0, 0]) + rad[:, None] * e_r - h[:, None] * e_t
+        upper = (xle + xi)[:, None] * np.array([1.0, 0, 0]) + rad[:, None] * e_r + h[:, None] * e_t
+        # from lower TE over LE to upper TE
+        lines.append(np.vstack([lower[::-1], upper[1:]]))
+    fin = np.array(lines)
+    net = Network(f"fin{k}", fin, "surface")
+    if _cell_normal(fin, 0, n_c + n_c // 2) @ e_t < 0:      # an upper-side panel
+        net = Network(f"fin{k}", fin[:, ::-1], "surface")
+    out = [net]
+    tip = fin[-1]
+    if f.tip_chord > 0:
+        m = n_c + 1
+        low, up = tip[:m][::-1], tip[m - 1:]
+        cap = np.array([low, up])
+        capn = Network(f"cap{k}", cap, "surface")
+        if _cell_normal(cap, 0, n_c // 2) @ e_r < 0:
+            capn = Network(f"cap{k}", cap[::-1], "surface")
+        out.append(capn)
+    te = net.points[:, 0]
+    wake = np.stack([te, te + np.array([opt.wake_length * length, 0, 0])], axis=1)
+    out.append(Network(f"wake{k}", wake, "wake"))
+    return out
+
+
+def _cell_normal(pts, i, j):
+    """Normal (Q3 - Q1) x (Q2 - Q4) of grid cell (i, j) (PANAIR orientation)."""
+    return np.cross(pts[i + 1, j + 1] - pts[i, j], pts[i, j + 1] - pts[i + 1, j])

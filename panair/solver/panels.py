@@ -1,0 +1,255 @@
+"""Panels from networks: geometry, neighbours for surface gradients, and
+the trailing-edge connectivity of wakes (the Kutta condition).
+
+Numeric-only.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ironbark_opt.errors import InputError
+
+from .influence import planar_corners
+
+__all__ = ["PanelSet", "build_panels"]
+
+
+@dataclass
+class PanelSet:
+    """Low-order panels of a configuration (one unknown per body panel).
+
+    Attributes
+    ----------
+    corners : ndarray (n, 4, 3) [m]
+        Body (kind surface/base) panel corners, physical coordinates.
+    network : ndarray (n,) of int
+        Index of the network each panel came from.
+    integrate : ndarray (n,) of bool
+        True for ``surface`` networks (forces integrated; PANAIR kt=1),
+        False for ``base`` networks.
+    neighbours : ndarray (n, 4) of int
+        Same-network neighbour panels (-1 = none, -2 = own mirror image in
+        the symmetry plane y = 0).
+    wake_corners : ndarray (w, 4, 3) [m]
+        Wake panel corners.
+    wake_upper, wake_lower : ndarray (w,) of int
+        Body panels on the two sides of the trailing edge a wake panel's
+        strip is shed from: wake doublet = mu_upper - mu_lower (Kutta
+        condition, e.g. Katz & Plotkin 2001, eq. 12.27); ``wake_lower`` is
+        -1 for a wake shed from a body-base edge.
+    wake_at_base : ndarray (w,) of bool
+        Wake panel shed from a body-base edge.  Such a wake tube is
+        modelled as the solid continuation of the body (sources
+        sigma = -U.n on it, doublet = the body's trailing-edge doublet,
+        interior potential zero, as the body's): the flow past the base
+        sees a semi-infinite body, which is what a separated base flow
+        looks like to the potential flow ahead of it, and the base panels
+        it caps are dropped.  (A closed base instead makes the flow turn
+        the base corner: strong suction on the last caliber of the body
+        that real flows do not show.)
+    symmetric : bool
+        Half model: the mirror image y -> -y is added to every influence.
+    """
+
+    corners: np.ndarray
+    network: np.ndarray
+    integrate: np.ndarray
+    neighbours: np.ndarray
+    wake_corners: np.ndarray
+    wake_upper: np.ndarray
+    wake_lower: np.ndarray
+    wake_at_base: np.ndarray
+    symmetric: bool
+    names: list
+
+    @property
+    def n(self) -> int:
+        """Number of body panels (unknowns)."""
+        return len(self.corners)
+
+    def geometry(self, stretch: float = 1.0):
+        """Flat corners, centroids, unit normals and areas, with x scaled by
+        ``stretch`` [-] (the Prandtl-Glauert transform x' = x / beta)."""
+        c = self.corners.copy()
+        c[..., 0] *= stretch
+        return planar_corners(c)
+
+    def wake_geometry(self, stretch: float = 1.0):
+        """Same as :meth:`geometry` for the wake panels."""
+        c = self.wake_corners.copy()
+        c[..., 0] *= stretch
+        return planar_corners(c)
+
+
+def _grid_corners(pts):
+    return np.stack([pts[:-1, :-1], pts[:-1, 1:], pts[1:, 1:], pts[1:, :-1]], axis=2)
+
+
+def build_panels(networks, *, symmetric: bool = False, tol: float | None = None) -> PanelSet:
+    """Cut networks into quadrilateral panels and connect wakes.
+
+    Parameters
+    ----------
+    networks : sequence of panair.lawgs.Network
+        Networks with ``kind`` "surface", "base" or "wake"; normals follow
+        PANAIR's rule (line direction x point direction) and must point
+        into the flow.
+    symmetric : bool
+        Half model with the plane y = 0 as symmetry plane.
+    tol : float, optional [m]
+        Distance under which two points are the same (default 1e-6 x the
+        configuration size).
+
+    Returns
+    -------
+    PanelSet
+
+    Raises
+    ------
+    InputError
+        If a wake's upstream edge does not coincide with panel edges of
+        the surface networks (the Kutta condition cannot be applied).
+    """
+    allpts = np.concatenate([n.points.reshape(-1, 3) for n in networks])
+    size = float(np.ptp(allpts, axis=0).max()) or 1.0
+    tol = 1e-6 * size if tol is None else tol
+    corners, netid, integ, nbrs, names, isbase = [], [], [], [], [], []
+    offset = 0
+    for k, net in enumerate(networks):
+        names.append(net.name)
+        if net.kind == "wake":
+            continue
+        cr = _grid_corners(net.points)                 # (L-1, P-1, 4, 3)
+        nl, npt = cr.shape[:2]
+        _, _, _, area = planar_corners(cr.reshape(-1, 4, 3))
+        keep = (area > 1e-10 * size**2).reshape(nl, npt)
+        idx = -np.ones((nl, npt), dtype=int)
+        idx[keep] = offset + np.arange(keep.sum())
+        nb = -np.ones((nl, npt, 4), dtype=int)
+        nb[1:, :, 0] = idx[:-1, :]
+        nb[:-1, :, 1] = idx[1:, :]
+        nb[:, 1:, 2] = idx[:, :-1]
+        nb[:, :-1, 3] = idx[:, 1:]
+        if symmetric:
+            on_plane_line0 = np.all(np.abs(net.points[0, :, 1]) < tol)
+            on_plane_line1 = np.all(np.abs(net.points[-1, :, 1]) < tol)
+            if on_plane_line0:
+                nb[0, :, 0] = -2
+            if on_plane_line1:
+                nb[-1, :, 1] = -2
+        corners.append(cr[keep])
+        nbrs.append(nb[keep])
+        netid.append(np.full(keep.sum(), k))
+        force = np.full((nl, npt), net.kind == "surface")
+        if "no_force" in net.meta:      # e.g. body panels hidden under a fin root
+            force &= ~np.asarray(net.meta["no_force"], bool).reshape(nl, npt)
+        integ.append(force[keep])
+        isbase.append(np.full(keep.sum(), net.kind == "base"))
+        offset += int(keep.sum())
+    if offset == 0:
+        raise InputError("no surface networks to solve for", field="networks")
+    corners = np.concatenate(corners)
+    # edge dictionary of body panels: key = sorted rounded end points
+    edge_map: dict = {}
+    for p in range(len(corners)):
+        for e in range(4):
+            a, b = corners[p, e], corners[p, (e + 1) % 4]
+            if np.linalg.norm(a - b) <= tol:
+                continue
+            edge_map.setdefault(_edge_key(a, b, tol), []).append(p)
+    wc, wu, wl, wb = [], [], [], []
+    _, cen, _, _ = planar_corners(corners)
+    for net in networks:
+        if net.kind != "wake":
+            continue
+        c, u, l = _attach_wake(net, edge_map, cen, tol)
+        base_flag = np.concatenate(isbase)
+        up_is_base = base_flag[u]
+        if np.any(up_is_base):
+            raise InputError(f"wake network '{net.name}': base panel on the upper side of "
+                             "its trailing edge: check the base network's normals (must point aft)",
+                             field=f"network '{net.name}'")
+        wb.append(base_flag[l])
+        wc.append(c)
+        wu.append(u)
+        wl.append(l)
+    netid = np.concatenate(netid)
+    # orientation: V = 1/2 Integral (y n_y + z n_z) dS (divergence theorem with
+    # F = (0, y, z)/2) is the enclosed volume for outward normals, and caps
+    # normal to x (bases, cut noses) or lying in y = 0 do not change it.
+    _, cc, cn, ca = planar_corners(corners)
+    vol = 0.5 * np.sum((cc[:, 1] * cn[:, 1] + cc[:, 2] * cn[:, 2]) * ca)
+    if vol < 0:
+        raise InputError("panel normals point into the body (enclosed volume "
+                         f"{vol:.4g} < 0): reverse the point order of the networks "
+                         "(PANAIR rule: normal = line direction x point direction)",
+                         field="networks")
+    integ = np.concatenate(integ)
+    nbrs = np.concatenate(nbrs)
+    # panels hidden under a fin root carry interior values: not gradient neighbours
+    hidden = ~integ & ~np.concatenate(isbase)
+    nbrs = np.where((nbrs >= 0) & hidden[np.maximum(nbrs, 0)], -1, nbrs)
+    wu = np.concatenate(wu) if wu else np.zeros(0, int)
+    wl = np.concatenate(wl) if wl else np.zeros(0, int)
+    wb = np.concatenate(wb) if wb else np.zeros(0, bool)
+    # A base capped by a base wake is inside the semi-infinite body formed by
+    # the body and its wake tube: drop its panels (see PanelSet).
+    drop = np.isin(netid, np.unique(netid[wl[wb]])) if wb.any() else np.zeros(len(netid), bool)
+    new = -np.ones(len(netid), dtype=int)
+    new[~drop] = np.arange((~drop).sum())
+    nbrs = np.where(nbrs >= 0, new[np.maximum(nbrs, 0)], nbrs)[~drop]
+    return PanelSet(corners=corners[~drop], network=netid[~drop], integrate=integ[~drop],
+                    neighbours=nbrs,
+                    wake_corners=np.concatenate(wc) if wc else np.zeros((0, 4, 3)),
+                    wake_upper=new[wu], wake_lower=np.where(wb, -1, new[wl]),
+                    wake_at_base=wb, symmetric=symmetric, names=names)
+
+
+def _edge_key(a, b, tol):
+    return tuple(sorted((tuple(np.round(a / tol).astype(np.int64)),
+                         tuple(np.round(b / tol).astype(np.int64)))))
+
+
+def _attach_wake(net, edge_map, centroids, tol):
+    """Find which side of a wake network is its trailing edge; return the
+    wake panels and, per panel, the upper and lower body panels."""
+    pts = net.points
+    cr = _grid_corners(pts)                       # cr[i, j]: between lines i, i+1 and points j, j+1
+    sides = {  # side -> (points along the side, strips of panels hanging from each edge, TE row)
+        "line0": (pts[0], cr.transpose(1, 0, 2, 3), 0),
+        "lineN": (pts[-1], cr.transpose(1, 0, 2, 3), -1),
+        "point0": (pts[:, 0], cr, 0),
+        "pointN": (pts[:, -1], cr, -1),
+    }
+    best = None
+    for side, (edge_pts, strips, row) in sides.items():
+        found = []
+        for a, b in zip(edge_pts[:-1], edge_pts[1:]):
+            if np.linalg.norm(a - b) <= tol:
+                found.append(None)
+                continue
+            found.append(edge_map.get(_edge_key(a, b, tol)))
+        hits = sum(1 for f in found if f is not None and len(f) == 2)
+        if best is None or hits > best[0]:
+            best = (hits, found, edge_pts, strips, row)
+    hits, found, edge_pts, strips, row = best
+    valid = [f for f in found if f is not None]
+    if hits == 0 or any(len(f) != 2 for f in valid):
+        raise InputError(f"wake network '{net.name}': its upstream edge must lie on edges "
+                         "shared by exactly two surface panels (a trailing edge)",
+                         field=f"network '{net.name}'")
+    corners, up, lo = [], [], []
+    for s, f in enumerate(found):
+        if f is None:
+            continue
+        strip = strips[s]
+        _, _, wn, _ = planar_corners(strip[[row]])
+        te = 0.5 * (edge_pts[s] + edge_pts[s + 1])
+        h = [(centroids[p] - te) @ wn[0] for p in f]
+        upper, lower = (f[0], f[1]) if h[0] >= h[1] else (f[1], f[0])
+        corners.append(strip)
+        up.extend([upper] * len(strip))
+        lo.extend([lower] * len(strip))
+    return np.concatenate(corners), np.array(up), np.array(lo)

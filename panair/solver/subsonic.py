@@ -1,0 +1,192 @@
+"""Subsonic linearised-potential panel solver (Prandtl-Glauert).
+
+Method: low-order Morino / Dirichlet formulation (Morino & Kuo, "Subsonic
+potential aerodynamics for complex configurations: a general theory",
+AIAA J. 12(2), 1974; Katz & Plotkin, *Low-Speed Aerodynamics*, 2001,
+sec. 12.3): constant source and doublet on each panel, the perturbation
+potential inside the body held at zero, sources sigma = -U'.n from the
+free stream, Kutta condition at trailing edges (wake doublet =
+mu_upper - mu_lower, K&P eq. 12.27).
+
+Compressibility: the Prandtl-Glauert / Goethert transform x' = x / beta,
+beta = sqrt(1 - M^2), with the linearised *mass-flux* boundary condition
+(as PANAIR: Epton & Magnus, NASA CR-3251, sec. B.3): in the stretched
+space Laplace's equation holds, the free stream becomes U' = (Ux / beta,
+Uy, Uz), and the physical perturbation velocity is (phi'_x' / beta,
+phi'_y, phi'_z).  The compressibility axis is the body x axis, so the
+influence matrix depends on Mach only: it is built and LU-factorised once,
+and each (alpha, beta) is one more right-hand side.  (PANAIR's reference
+runs use ALPC = alpha, i.e. the compressibility axis along the wind; on the
+ogive-cylinder the difference is ~1 % in CN.)
+
+Base: a wake tube shed from a body-base edge is the solid continuation of
+the body (sources and the body's trailing-edge doublet, see
+``PanelSet.wake_at_base``), so the flow ahead of the base sees a
+semi-infinite body, as a separated base flow looks to it.
+
+Numeric-only.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.linalg import lu_factor, lu_solve
+
+from ironbark_opt.errors import InputError, SolverError
+
+from .influence import influence_matrices
+from .panels import PanelSet
+from .pressure import integrate_forces, pressure_coefficient, surface_gradient
+
+__all__ = ["SubsonicSolver", "PanelResult", "MACH_SUBSONIC_MAX"]
+
+MACH_SUBSONIC_MAX = 0.9
+"""Above this the Prandtl-Glauert model is not trusted (transonic)."""
+
+
+@dataclass(frozen=True)
+class PanelResult:
+    """Pressure forces on the ``surface`` networks for one flow condition.
+
+    Coefficients are body-axis (x aft, z up): ``CA`` positive aft, ``CN``
+    positive up, ``Cm`` positive nose-up about (xref, 0, 0); divided by
+    q * sref (and lref for moments).  Pressure only (no friction, no base).
+    """
+
+    mach: float
+    alpha: float
+    beta: float
+    CA: float
+    CY: float
+    CN: float
+    Cl: float
+    Cm: float
+    Cn: float
+    cp: np.ndarray = field(repr=False)
+    mu: np.ndarray = field(repr=False)
+
+    def coefficients(self) -> dict:
+        """The six coefficients as a dict."""
+        return {k: getattr(self, k) for k in ("CA", "CY", "CN", "Cl", "Cm", "Cn")}
+
+
+def _free_stream(alpha, beta):
+    """Unit free-stream direction in body axes (x aft, z up), aeroballistic
+    angles: alpha [rad] in the x-z plane, beta [rad] sideslip (wind from
+    the +y side gives negative CY)."""
+    return np.array([np.cos(alpha) * np.cos(beta), -np.sin(beta), np.sin(alpha) * np.cos(beta)])
+
+
+class SubsonicSolver:
+    """Influence matrix for one Mach number, factorised once.
+
+    Parameters
+    ----------
+    panels : PanelSet
+        From :func:`panair.solver.panels.build_panels` (lengths in [m] or
+        any consistent unit with ``sref``, ``lref``, ``xref``).
+    mach : float [-]
+        0 <= mach <= 0.9.
+    sref : float [m^2]
+    lref : float [m]
+    xref : float [m]
+        Moment reference, x aft of the nose tip.
+    pressure_rule : str
+        See :func:`panair.solver.pressure.pressure_coefficient`
+        (default second-order, PANAIR's default).
+    """
+
+    def __init__(self, panels: PanelSet, mach: float, *, sref: float, lref: float,
+                 xref: float = 0.0, pressure_rule: str = "second-order"):
+        if not 0.0 <= mach <= MACH_SUBSONIC_MAX:
+            raise InputError(f"subsonic solver needs 0 <= Mach <= {MACH_SUBSONIC_MAX}, got {mach} "
+                             "(transonic Mach numbers are bridged, supersonic ones need the "
+                             "supersonic solver)", field="mach")
+        if sref <= 0 or lref <= 0:
+            raise InputError("sref and lref must be positive", field="sref/lref")
+        self.panels = panels
+        self.mach = float(mach)
+        self.beta_pg = np.sqrt(1.0 - mach**2)
+        self.sref, self.lref, self.xref = float(sref), float(lref), float(xref)
+        self.pressure_rule = pressure_rule
+        pressure_coefficient(np.zeros((1, 3)), np.array([1.0, 0, 0]), mach, pressure_rule)
+        stretch = 1.0 / self.beta_pg
+        flat, cen, nrm, area = panels.geometry(stretch)
+        self._cen_t, self._nrm_t = cen, nrm
+        self._nrm_src = nrm
+        n = panels.n
+        D, S = influence_matrices(cen, flat, nrm, self_index=np.arange(n))
+        if panels.symmetric:
+            mirror = cen * np.array([1.0, -1.0, 1.0])
+            influence_matrices(mirror, flat, nrm, out=(D, S))
+        if len(panels.wake_corners):
+            wflat, wcen, wnrm, _ = panels.wake_geometry(stretch)
+            Dw, _ = influence_matrices(cen, wflat, wnrm)
+            if panels.symmetric:
+                Dw += influence_matrices(cen * np.array([1.0, -1.0, 1.0]), wflat, wnrm)[0]
+            low = panels.wake_lower >= 0
+            np.add.at(D.T, panels.wake_upper, Dw.T)
+            np.add.at(D.T, panels.wake_lower[low], -Dw.T[low])
+            base = panels.wake_at_base
+            if np.any(base):
+                # base wake tubes carry sources too (solid continuation of the body)
+                Sw = influence_matrices(cen, wflat[base], wnrm[base])[1]
+                if panels.symmetric:
+                    Sw += influence_matrices(cen * np.array([1.0, -1.0, 1.0]),
+                                             wflat[base], wnrm[base])[1]
+                S = np.hstack([S, Sw])
+                nrm = np.vstack([nrm, wnrm[base]])
+        self._S = S
+        self._nrm_src = nrm
+        if not np.all(np.isfinite(D)) or not np.all(np.isfinite(S)):
+            raise SolverError(f"Mach {mach}: non-finite influence coefficients "
+                              "(coincident or degenerate panels in the mesh)")
+        self._lu = lu_factor(D, overwrite_a=True, check_finite=False)
+        diag = np.abs(np.diag(self._lu[0]))
+        if diag.min() < 1e-10 * diag.max():
+            raise SolverError(f"Mach {mach}: singular influence matrix "
+                              "(duplicated panels or wrongly oriented networks)")
+        _, self._cen, self._nrm, self._area = panels.geometry(1.0)
+
+    def solve(self, alpha, beta=0.0) -> list[PanelResult]:
+        """Solve for one or more flow angles.
+
+        Parameters
+        ----------
+        alpha : float or array [rad]
+            Angle(s) of attack.
+        beta : float or array [rad]
+            Sideslip angle(s) (broadcast with alpha); must be 0 on a half
+            model.
+
+        Returns
+        -------
+        list of PanelResult, one per angle pair.
+        """
+        alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
+                                          np.atleast_1d(np.asarray(beta, float)))
+        if self.panels.symmetric and np.any(beta != 0.0):
+            raise InputError("a half model (symmetric=True) cannot be solved in sideslip; "
+                             "mesh the full configuration", field="beta")
+        v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])     # (k, 3)
+        vt = v / np.array([self.beta_pg, 1.0, 1.0])                           # stretched free stream
+        sigma = -(self._nrm_t @ vt.T)                                         # (n, k)
+        sigma_all = -(self._nrm_src @ vt.T)
+        mu = lu_solve(self._lu, -(self._S @ sigma_all), check_finite=False)
+        out = []
+        for k in range(len(alpha)):
+            g = surface_gradient(mu[:, k], self._cen_t, self._nrm_t, self.panels.neighbours)
+            grad = g + sigma[:, k, None] * self._nrm_t
+            u = grad / np.array([self.beta_pg, 1.0, 1.0])
+            cp = pressure_coefficient(u, v[k], self.mach, self.pressure_rule)
+            if not np.all(np.isfinite(cp)):
+                raise SolverError(f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: "
+                                  "non-finite surface pressure")
+            sel = self.panels.integrate
+            c = integrate_forces(cp[sel], self._cen[sel], self._nrm[sel], self._area[sel],
+                                 sref=self.sref, lref=self.lref, xref=self.xref,
+                                 symmetric=self.panels.symmetric)
+            out.append(PanelResult(self.mach, float(alpha[k]), float(beta[k]), cp=cp,
+                                   mu=mu[:, k], **c))
+        return out

@@ -1,0 +1,305 @@
+"""Supersonic linearised-potential panel solver (source panels, Mach-cone
+domain of dependence).
+
+Method: constant-strength source panels in the scaled space X = x / B
+(B = sqrt(M^2 - 1)), Neumann mass-flux boundary condition on the wetted
+side of every panel (Epton & Magnus, NASA CR-3251, sec. B.3; as in the
+subsonic solver, the compressibility axis is the body x axis), with the
+influence of each panel limited to its downstream Mach cone
+(:mod:`.supersonic_influence`).  In supersonic flow a source distribution
+represents the flow outside a closed body of revolution without doublets;
+the wake and the base are downstream of everything that is integrated, so
+they are left out (the linear theory is causal).  The mass flux through a
+panel is the difference of the closed-form potential between a point on
+its wetted side and a point one step further along the conormal
+(-n_X, n_Y, n_Z) (a directional derivative); the tangential velocity
+is the surface gradient of the potential, as in the
+subsonic solver.
+
+Regularisation: the wetted-side mass flux and the surface potential are
+evaluated a small distance (FD_OFFSET x panel size) off the panel, with a
+finite-difference step of the same size.  Constant-strength panels on a
+smooth surface create Mach-line singularities along every panel edge (an
+artefact of the discretisation); evaluated on the surface they make the
+result depend on how the collocation point sits relative to the
+neighbours' Mach lines (measured: ogive-cylinder CN-alpha varied by 6 %
+for offsets 1e-6 ... 1e-4), 1-3 % off the surface the result is stable
+(1e-2 ... 3e-2 within 0.3 %) and agrees with PANAIR's higher-order
+(smooth-singularity) solution.
+
+Fins (networks that shed trailing-edge wakes): with sources only, the two
+faces of a thin fin nearly coincide and the lifting part of the system
+becomes singular.  The two sides of a thin surface in supersonic flow are
+independent, so a source on one side of a fin is not allowed to act on
+the other side (:func:`_fin_shadow`); tip communication goes through the
+tip cap.  This is an approximation of ours (validated against PANAIR on
+the Basic Finner, tests/validation/test_panel_basic_finner_supersonic.py),
+not PANAIR's doublet formulation.
+
+Nose correction: where linearised theory breaks on the nose (B tan delta
+-> 0.5; the reference README shows PANAIR's nose load growing without
+bound), forward-facing body panels take tangent-cone pressures
+(:mod:`.nose_correction`), blended in smoothly over 0.4 < B tan delta < 0.6.
+
+Checks that replace PANAIR's silent failures: every wetted panel must be
+subinclined (its plane inclined to the flow by less than the Mach angle)
+with a margin; Mach-inclined or superinclined panels, a singular system,
+or a non-physical pressure (Cp below vacuum or above 1.5 x the stagnation
+value on more than 1 % of the wetted area) raise SolverError naming the
+case.
+
+Numeric-only.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import lu_factor, lu_solve
+
+from ironbark_opt.errors import InputError, SolverError
+
+from .panels import PanelSet
+from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gradient
+from .subsonic import PanelResult, _free_stream
+from .nose_correction import TangentCone
+from .supersonic_influence import panel_frames, source_potential
+
+__all__ = ["SupersonicSolver", "MACH_SUPERSONIC_MIN", "MACH_SUPERSONIC_MAX", "G1_MIN"]
+
+MACH_SUPERSONIC_MIN = 1.2
+MACH_SUPERSONIC_MAX = 5.0
+NOSE_BLEND = (0.4, 0.6)
+"""B tan(nose half-angle) over which nose pressures go from linear theory to
+tangent-cone (smooth step)."""
+FD_OFFSET = 2e-2
+FD_STEP = 2e-2
+"""Finite-difference step for the normal mass flux, x sqrt(panel area) [-]."""
+G1_MIN = 0.05
+"""Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
+panel is (nearly) Mach-inclined and linear theory has no valid solution."""
+
+
+BAD_AREA_MAX = 0.01
+"""Largest fraction of the wetted area allowed with Cp beyond vacuum or 1.5 x
+stagnation (isolated corner singularities at fin tips are tolerated, as
+they are local and negligible in the integrated forces)."""
+
+
+def _bad_area(cp, area, cp_vac, cp_max):
+    bad = (cp < cp_vac - 0.05) | (cp > cp_max)
+    return float(area[bad].sum() / max(area.sum(), 1e-300))
+
+
+def _fin_shadow(panels: PanelSet, keep, cen, nrm) -> np.ndarray:
+    """Source-receiver pairs separated by a fin: True where panel j's source
+    must not act on panel i's collocation point.
+
+    A fin is a network that sheds a trailing-edge wake.  Its mid-plane
+    (least-squares plane through its panel centroids) splits space; a face
+    panel belongs to the side its normal points to (tip caps and edges to
+    neither).  Receivers are the fin's own faces and the body panels in the
+    fin's half of the cross-section downstream of its leading edge; a source on one side of the fin does
+    not act on a receiver on the other side.  This is the thin-wing
+    property of supersonic flow (the two sides of a thin surface are
+    independent, e.g. Ward 1955, ch. 8) imposed on the thick panel model,
+    where the two faces of a thin fin would otherwise nearly coincide and
+    make the system singular.  Tip-region communication around the fin tip
+    goes through the tip cap.
+    """
+    net = panels.network[keep]
+    m = len(net)
+    shadow = np.zeros((m, m), bool)
+    lifting = ~panels.wake_at_base
+    if not np.any(lifting):
+        return shadow
+    fins = np.unique(panels.network[panels.wake_upper[lifting]])
+    is_fin = np.isin(net, fins)
+    for f in fins:
+        on = net == f
+        c0 = cen[on].mean(axis=0)
+        e_t = np.linalg.svd(cen[on] - c0)[2][2]
+        face = nrm @ e_t
+        src_side = np.where(on & (np.abs(face) > 0.5), np.sign(face), 0.0)
+        radial = c0 * np.array([0.0, 1.0, 1.0])
+        near = (cen @ radial > 0) & ~is_fin & (cen[:, 0] >= cen[on, 0].min())
+        recv_side = np.where(on, src_side, np.where(near, np.sign((cen - c0) @ e_t), 0.0))
+        shadow |= (recv_side[:, None] * src_side[None, :]) < 0
+    return shadow
+
+
+def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
+    """Panels of networks that touch a fin network (tip caps) and are not
+    the body: networks sharing points with a fin whose panels all face
+    sideways."""
+    net = panels.network[keep]
+    out = np.zeros(len(net), bool)
+    if not len(fins):
+        return out
+    fin_pts = panels.corners[np.isin(panels.network, fins)].reshape(-1, 3)
+    lo, hi = fin_pts.min(0), fin_pts.max(0)
+    c = panels.corners[keep].mean(axis=1)
+    inside = np.all((c >= lo - 1e-9) & (c <= hi + 1e-9), axis=1)
+    for k in np.unique(net):
+        on = net == k
+        if k not in fins and inside[on].all():
+            out |= on
+    return out
+
+
+def _stagnation_cp(mach):
+    """Isentropic stagnation Cp behind a normal shock (Rayleigh pitot formula,
+    NACA Report 1135, 1953, eq. 100) [-]."""
+    g = GAMMA
+    m2 = mach**2
+    p02_p1 = (((g + 1) * m2 / 2) ** (g / (g - 1))
+              * ((g + 1) / (2 * g * m2 - (g - 1))) ** (1 / (g - 1)))
+    return (p02_p1 - 1) / (0.5 * g * m2)
+
+
+class SupersonicSolver:
+    """Source-panel influence matrix for one supersonic Mach number.
+
+    Parameters
+    ----------
+    panels : PanelSet
+    mach : float [-]
+        MACH_SUPERSONIC_MIN <= mach <= MACH_SUPERSONIC_MAX.
+    sref : float [m^2]; lref : float [m]; xref : float [m]
+    pressure_rule : str
+        See :func:`panair.solver.pressure.pressure_coefficient`.
+    nose : str
+        ``"tangent-cone"`` (default): pressures on forward-facing body
+        panels blend from linear theory to the tangent-cone value as
+        B tan(nose half-angle) goes from 0.4 to 0.6
+        (:mod:`.nose_correction`); ``"linear"``: linear theory everywhere
+        (PANAIR's behaviour).
+    """
+
+    def __init__(self, panels: PanelSet, mach: float, *, sref: float, lref: float,
+                 xref: float = 0.0, pressure_rule: str = "second-order",
+                 nose: str = "tangent-cone"):
+        if nose not in ("tangent-cone", "linear"):
+            raise InputError(f"nose must be 'tangent-cone' or 'linear', got {nose!r}", field="nose")
+        if not MACH_SUPERSONIC_MIN <= mach <= MACH_SUPERSONIC_MAX:
+            raise InputError(f"supersonic solver needs {MACH_SUPERSONIC_MIN} <= Mach <= "
+                             f"{MACH_SUPERSONIC_MAX}, got {mach}", field="mach")
+        self.panels = panels
+        self.mach = float(mach)
+        self.B = np.sqrt(mach**2 - 1.0)
+        self.sref, self.lref, self.xref = float(sref), float(lref), float(xref)
+        self.pressure_rule = pressure_rule
+        pressure_coefficient(np.zeros((1, 3)), np.array([1.0, 0, 0]), mach, pressure_rule)
+        keep = panels.integrate.copy()          # bases are downstream of everything integrated
+        self._keep = keep
+        idx = -np.ones(panels.n, int)
+        idx[keep] = np.arange(keep.sum())
+        nb = panels.neighbours[keep]
+        self._nb = np.where(nb >= 0, idx[np.maximum(nb, 0)], nb)
+        flat, cen, nrm, area = panels.geometry(1.0 / self.B)
+        flat, cen, nrm = flat[keep], cen[keep], nrm[keep]
+        _, _, g1 = panel_frames(flat, nrm)
+        bad = g1 < G1_MIN
+        if np.any(bad):
+            nets = sorted({panels.names[k] for k in panels.network[keep][bad]})
+            raise SolverError(f"Mach {mach}: {bad.sum()} panel(s) of network(s) {nets} are "
+                              "superinclined or Mach-inclined (steeper than the Mach cone): "
+                              "linear supersonic theory has no solution there; blunt noses, "
+                              "blunt (square) fin leading edges and steep shoulders need a "
+                              "sharper shape or a lower Mach (or an external PANAIR)")
+        self._cen_t, self._nrm_t, self._g1 = cen, nrm, g1
+        # regularisation length: the panel's size, but not more than its
+        # shortest edge (leading-edge panels are slivers in scaled space)
+        edges = np.linalg.norm(np.roll(flat, -1, axis=1) - flat, axis=-1)
+        shortest = np.where(edges > 1e-9 * edges.max(), edges, np.inf).min(axis=1)
+        scale = np.minimum(np.sqrt(np.maximum(area[keep], 1e-300)), shortest)
+        eps0 = FD_OFFSET * scale
+        eps = FD_STEP * scale
+        p0 = cen + eps0[:, None] * nrm                      # wetted side, off the panel
+        conormal = nrm * np.array([-1.0, 1.0, 1.0])        # mass flux w.n = conormal . grad(phi)
+        p1 = p0 + eps[:, None] * conormal
+        mirror = np.array([1.0, -1.0, 1.0])
+        shadow = _fin_shadow(panels, keep, cen, nrm)
+        phi = {}
+        for key, pts in (("0", p0), ("1", p1)):
+            val = source_potential(pts, flat, nrm)
+            val[shadow] = 0.0
+            if panels.symmetric:
+                val += source_potential(pts * mirror, flat, nrm)
+            phi[key] = val
+        A = (phi["1"] - phi["0"]) / eps[:, None]
+        if not np.all(np.isfinite(A)):
+            raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
+        self._phi0 = phi["0"]
+        self._lu = lu_factor(A, overwrite_a=True, check_finite=False)
+        diag = np.abs(np.diag(self._lu[0]))
+        if diag.min() < 1e-8 * diag.max():
+            raise SolverError(f"Mach {mach}: singular supersonic influence matrix "
+                              "(Mach-cone coincidences or duplicated panels)")
+        _, c_phys, n_phys, a_phys = panels.geometry(1.0)
+        self._cen, self._nrm, self._area = c_phys[keep], n_phys[keep], a_phys[keep]
+        lifting = ~panels.wake_at_base
+        fins = np.unique(panels.network[panels.wake_upper[lifting]]) if np.any(lifting) else []
+        caps = _tip_caps(panels, keep, fins)
+        self._nose = (self._nrm[:, 0] < -np.sin(np.radians(1.0))) \
+            & ~np.isin(panels.network[keep], fins) & ~caps
+        self._tangent_cone = TangentCone(mach) if nose == "tangent-cone" else None
+        # blend linear -> tangent-cone as B tan(delta_nose) goes 0.4 -> 0.6
+        # (linear theory breaks near 0.5: the reference README); our choice
+        if np.any(self._nose):
+            d_nose = float(np.arcsin(np.clip(-self._nrm[self._nose, 0], 0, 1)).max())
+            t = np.clip((self.B * np.tan(d_nose) - NOSE_BLEND[0])
+                        / (NOSE_BLEND[1] - NOSE_BLEND[0]), 0.0, 1.0)
+            self.nose_weight = float(t * t * (3 - 2 * t))
+        else:
+            self.nose_weight = 0.0
+        self._cp_max = 1.5 * _stagnation_cp(mach)
+        self._cp_vac = -2.0 / (GAMMA * mach**2)
+
+    def solve(self, alpha, beta=0.0) -> list[PanelResult]:
+        """Solve for one or more flow angles (see SubsonicSolver.solve).
+
+        Raises
+        ------
+        SolverError
+            A non-physical surface pressure (the case is reported, not returned).
+        """
+        alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
+                                          np.atleast_1d(np.asarray(beta, float)))
+        if self.panels.symmetric and np.any(beta != 0.0):
+            raise InputError("a half model (symmetric=True) cannot be solved in sideslip; "
+                             "mesh the full configuration", field="beta")
+        v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])
+        vt = v / np.array([self.B, 1.0, 1.0])
+        rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
+        sigma = lu_solve(self._lu, rhs, check_finite=False)
+        phi = self._phi0 @ sigma
+        nu = self._nrm_t * np.array([-1.0, 1.0, 1.0])
+        out = []
+        sel = np.ones(len(self._cen), bool)
+        for k in range(len(alpha)):
+            g_t = surface_gradient(phi[:, k], self._cen_t, self._nrm_t, self._nb)
+            gn = (rhs[:, k] - np.einsum("nj,nj->n", nu, g_t)) / self._g1
+            grad = g_t + gn[:, None] * self._nrm_t
+            u = grad / np.array([self.B, 1.0, 1.0])
+            cp = pressure_coefficient(u, v[k], self.mach, self.pressure_rule)
+            if self._tangent_cone is not None and self.nose_weight > 0:
+                inc = np.arcsin(np.clip(-(self._nrm[self._nose] @ v[k]), -1.0, 1.0))
+                w = self.nose_weight
+                cp[self._nose] = (1 - w) * cp[self._nose] + w * self._tangent_cone.cp(inc)
+            cpi = cp[sel]
+            frac = _bad_area(cpi, self._area[sel], self._cp_vac, self._cp_max)
+            if not np.all(np.isfinite(cpi)) or frac > BAD_AREA_MAX:
+                raise SolverError(
+                    f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: non-physical "
+                    f"surface pressure on {100 * frac:.1f} % of the wetted area (Cp "
+                    f"{np.nanmin(cpi):.3g} .. {np.nanmax(cpi):.3g}; vacuum {self._cp_vac:.3g}, "
+                    f"stagnation {self._cp_max / 1.5:.3g})")
+            c = integrate_forces(cp[sel], self._cen[sel], self._nrm[sel], self._area[sel],
+                                 sref=self.sref, lref=self.lref, xref=self.xref,
+                                 symmetric=self.panels.symmetric)
+            full_cp = np.full(self.panels.n, np.nan)
+            full_cp[self._keep] = cp
+            full_mu = np.full(self.panels.n, np.nan)
+            full_mu[self._keep] = phi[:, k]
+            out.append(PanelResult(self.mach, float(alpha[k]), float(beta[k]), cp=full_cp,
+                                   mu=full_mu, **c))
+        return out

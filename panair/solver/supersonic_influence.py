@@ -1,0 +1,196 @@
+"""Potential of constant-strength source panels in supersonic linearised
+flow, with the Mach-cone domain of dependence.
+
+Scaled coordinates X = x / B (B = sqrt(M^2 - 1)), Y = y, Z = z turn the
+linearised potential equation into the wave equation
+phi_XX = phi_YY + phi_ZZ; a unit source gives phi = -1 / (2 pi R),
+R = sqrt(dX^2 - dY^2 - dZ^2), inside its downstream Mach cone only
+(e.g. Ward, *Linearized Theory of Steady High-Speed Flow*, 1955, sec. 3.4;
+the normalisation is the one whose planar sheet has a mass-flux jump
+equal to its strength, Epton & Magnus, NASA CR-3251, sec. D).
+
+For a planar, *subinclined* panel (normal n with n_X^2 < 1/2 in scaled
+coordinates) the in-plane basis e2 = x x n / |x x n|, e1 = n x e2
+diagonalises the hyperbolic form: with g1 = 1 - 2 n_X^2 and u = sqrt(g1) s
+(s, t = panel coordinates along e1, e2)
+
+    R^2 = (U - u)^2 - (T - t)^2 - H^2,   H^2 = h^2 / g1,   dA = du dt / sqrt(g1),
+
+(h = normal distance, U = sqrt(g1) (d1 + 2 e1_X n_X h / g1), T = d2).
+Over the part of the panel inside the upstream Mach cone, the divergence
+theorem with the field V = (p, q) r / (p^2 - q^2) (p = U - u, q = T - t,
+div V = 1 / r, V = 0 on the Mach cone) leaves one integral per edge:
+delta_k * Integral sqrt(R) / (R + H^2) dtau, delta_k the distance from the
+field point's projection to the edge line, R quadratic in the edge
+parameter; done in closed form (J0 - H^2 K below; our derivation, checked
+against quadrature in tests/unit/test_panair_supersonic.py).
+
+Numeric-only.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["panel_frames", "source_potential"]
+
+_TWO_PI = 2.0 * np.pi
+
+
+def panel_frames(flat: np.ndarray, normal: np.ndarray):
+    """Canonical in-plane frames of subinclined panels (scaled coordinates).
+
+    Returns
+    -------
+    e1, e2 : ndarray (n, 3)
+        Unit in-plane vectors (e1 with e1_X >= 0, e2 with e2_X = 0).
+    g1 : ndarray (n,)
+        1 - 2 n_X^2: > 0 subinclined, <= 0 superinclined (or Mach-inclined).
+    """
+    xhat = np.array([1.0, 0.0, 0.0])
+    e2 = np.cross(xhat, normal)
+    nrm = np.linalg.norm(e2, axis=1)
+    e2 = e2 / np.where(nrm > 1e-12, nrm, 1.0)[:, None]
+    e1 = np.cross(normal, e2)
+    sign = np.where(e1[:, 0] < 0, -1.0, 1.0)
+    e1 *= sign[:, None]
+    g1 = 1.0 - 2.0 * normal[:, 0] ** 2
+    return e1, e2, g1
+
+
+def _antiderivative(tau, a, b, c, H2):
+    """F(tau) with F' = sqrt(R) / (R + H2), R = a tau^2 + b tau + c (> 0 where used)."""
+    R = np.maximum(a * tau**2 + b * tau + c, 0.0)
+    s = np.sqrt(R)
+    lin = np.abs(a) < 1e-12
+    a_safe = np.where(lin, 1.0, a)
+    w = tau + b / (2.0 * a_safe)
+    D = c - b**2 / (4.0 * a_safe)
+    pos = a > 0
+    # J0 = Integral dtau / sqrt(R)
+    sa = np.sqrt(np.abs(a_safe))
+    j0_pos = np.log(np.abs(sa * s + a_safe * w) + 1e-300) / sa
+    arg = np.clip(a_safe * w / np.sqrt(np.maximum(np.abs(a_safe * D), 1e-300)), -1.0, 1.0)
+    j0_neg = -np.arcsin(arg) / sa
+    b_safe = np.where(np.abs(b) > 1e-300, b, 1e-300)
+    j0_lin = 2.0 * s / b_safe
+    j0 = np.where(lin, j0_lin, np.where(pos, j0_pos, j0_neg))
+    # H2 * K, K = Integral dtau / ((R + H2) sqrt(R))
+    has_h = H2 > 1e-30
+    H2s = np.where(has_h, H2, 1.0)
+    ratio = (D + H2s) / a_safe
+    atan_case = ratio < 0
+    beta = np.sqrt(np.abs(ratio) / H2s)
+    k_atan = np.arctan2(beta * s, w) / (beta * a_safe)
+    num = w + beta * s
+    den = w - beta * s
+    k_log = -0.5 * np.log(np.abs(num) / np.maximum(np.abs(den), 1e-300) + 1e-300) / (beta * a_safe)
+    hk = np.where(atan_case, k_atan, k_log)
+    # linear R (edge along a Mach line): H2 K = 2 sqrt(H2) atan(s / sqrt(H2)) / b
+    hk_lin = 2.0 * np.sqrt(H2s) * np.arctan(s / np.sqrt(H2s)) / b_safe
+    hk = np.where(lin, hk_lin, hk)
+    return j0 - np.where(has_h, hk, 0.0)
+
+
+def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
+                     chunk: int = 64) -> np.ndarray:
+    """Supersonic potential per unit source strength of flat panels.
+
+    Parameters
+    ----------
+    points : ndarray (m, 3)
+        Field points, scaled coordinates (X = x / B).
+    flat, normal : ndarray (n, 4, 3), (n, 3)
+        Planar panels in scaled coordinates and their unit normals; all
+        must be subinclined (``panel_frames`` g1 > 0).
+
+    Returns
+    -------
+    ndarray (m, n)
+        phi = -1/(2 pi) Integral_{panel and upstream Mach cone} dA / R.
+    """
+    e1, e2, g1 = panel_frames(flat, normal)
+    sg = np.sqrt(np.maximum(g1, 1e-12))
+    q0 = flat[:, 0, :]
+    rel = flat - q0[:, None, :]
+    uk = sg[:, None] * np.einsum("nkj,nj->nk", rel, e1)          # (n, 4)
+    tk = np.einsum("nkj,nj->nk", rel, e2)
+    # counter-clockwise polygons in (u, t) (so in (p, q) too: a point reflection)
+    area2 = np.sum(uk * np.roll(tk, -1, 1) - np.roll(uk, -1, 1) * tk, axis=1)
+    flip = area2 < 0
+    uk = np.where(flip[:, None], uk[:, ::-1], uk)
+    tk = np.where(flip[:, None], tk[:, ::-1], tk)
+    du = np.roll(uk, -1, 1) - uk
+    dt = np.roll(tk, -1, 1) - tk
+    L = np.hypot(du, dt)
+    okL = L > 1e-14 * (1.0 + L.max())
+    Ls = np.where(okL, L, 1.0)
+    m, n = len(points), len(flat)
+    out = np.zeros((m, n))
+    e1x_nx = e1[:, 0] * normal[:, 0]
+    cen = flat.mean(axis=1)
+    rho = np.linalg.norm(flat - cen[:, None, :], axis=-1).max(axis=1)
+    ep_all = -du / Ls
+    eq_all = -dt / Ls
+    nup_all = -dt / Ls
+    nuq_all = du / Ls
+    a_all = ep_all**2 - eq_all**2
+    for a0 in range(0, m, chunk):
+        P = points[a0:a0 + chunk]
+        d = P[:, None, :] - cen[None, :, :]
+        # a panel whose bounding sphere is outside the upstream Mach cone of P
+        # (45 deg in scaled coordinates) has no influence
+        dist = (np.hypot(d[..., 1], d[..., 2]) - d[..., 0]) / np.sqrt(2.0)
+        I, J = np.nonzero(dist < rho[None, :] * (1 + 1e-9) + 1e-12)
+        for b0 in range(0, len(I), 20000):
+            ii, jj = I[b0:b0 + 20000], J[b0:b0 + 20000]
+            out[a0 + ii, jj] = _pair_potential(P[ii], jj, q0, normal, e1, e2, g1, sg, e1x_nx,
+                                               uk, tk, L, okL, ep_all, eq_all, nup_all,
+                                               nuq_all, a_all)
+    return out
+
+
+def _pair_potential(P, jj, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all,
+                    eq_all, nup_all, nuq_all, a_all):
+    """Potential of panel jj[k] at point P[k] (vectorised over pairs)."""
+    d = P - q0[jj]
+    nj = normal[jj]
+    h = np.einsum("kj,kj->k", d, nj)
+    d1 = np.einsum("kj,kj->k", d, e1[jj])
+    d2 = np.einsum("kj,kj->k", d, e2[jj])
+    gj = np.maximum(g1[jj], 1e-12)
+    sgj = sg[jj]
+    U = sgj * (d1 + 2.0 * e1x_nx[jj] * h / gj)
+    H2 = (h**2 / gj)[:, None]
+    pk = U[:, None] - uk[jj]
+    qk = d2[:, None] - tk[jj]
+    ep, eq = ep_all[jj], eq_all[jj]
+    delta = pk * nup_all[jj] + qk * nuq_all[jj]
+    a = a_all[jj]
+    b = 2.0 * (pk * ep - qk * eq)
+    c = pk**2 - qk**2 - H2
+    Lb = L[jj]
+    disc = b**2 - 4.0 * a * c
+    sq = np.sqrt(np.maximum(disc, 0.0))
+    lin = np.abs(a) < 1e-12
+    a_s = np.where(lin, 1.0, a)
+    r1 = np.where(lin, -c / np.where(np.abs(b) > 1e-300, b, 1e-300), (-b - sq) / (2 * a_s))
+    r2 = np.where(lin, r1, (-b + sq) / (2 * a_s))
+    has = (disc >= 0) | lin
+    r1 = np.where(has, r1, 0.0)
+    r2 = np.where(has, r2, 0.0)
+    pts = np.sort(np.stack([np.zeros_like(c), np.clip(np.minimum(r1, r2), 0, Lb),
+                            np.clip(np.maximum(r1, r2), 0, Lb), Lb], axis=-1), axis=-1)
+    H2b = np.broadcast_to(H2, c.shape)
+    total = np.zeros(c.shape)
+    for j in range(3):
+        ta, tb = pts[..., j], pts[..., j + 1]
+        mid = 0.5 * (ta + tb)
+        valid = (tb - ta > 1e-15 * (1 + Lb)) & (a * mid**2 + b * mid + c > 0) & (pk + ep * mid > 0)
+        if not np.any(valid):
+            continue
+        v = np.nonzero(valid)
+        total[v] = (_antiderivative(tb[v], a[v], b[v], c[v], H2b[v])
+                    - _antiderivative(ta[v], a[v], b[v], c[v], H2b[v]))
+    integral = np.sum(np.where(okL[jj], delta * total, 0.0), axis=-1) / sgj
+    return -integral / _TWO_PI
+

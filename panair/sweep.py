@@ -1,0 +1,234 @@
+"""Mach x angle-of-attack sweeps of the panel solver -> AeroTable.
+
+Angles are the polar aeroballistic convention: ``alpha`` is the total
+angle of attack, in the body's x-z plane (for a rocket with 4 (or any
+even number of) fins meshed with no fin in that plane).  For every Mach
+number the panels' influence matrix is built and factorised once and all
+angles are right-hand sides; Mach numbers run in parallel in a process
+pool with a progress bar.
+
+The table a user plots is the total: ``CA = CA_pressure + CA_friction +
+CA_base`` where
+
+* ``CA_pressure`` is the panel solution (body, fins; base excluded);
+* ``CA_friction`` is :class:`ironbark_opt.aero.friction.FrictionDrag`
+  (component build-up) at the sea-level ISA unit Reynolds number of each
+  Mach number, Re/m = rho0 a0 M / mu0 (ICAO standard atmosphere, 1993:
+  rho0 = 1.225 kg/m^3, a0 = 340.294 m/s, mu0 = 1.7894e-5 Pa s) — a table
+  has no Reynolds axis, and sea level is where drag matters most;
+* ``CA_base`` is :class:`ironbark_opt.aero.base_drag.BaseDrag` (power
+  off; ``CA_power_on`` uses the jet area given).
+
+Supersonic Mach numbers are solved by the built-in supersonic solver, or
+by an external PANAIR when ``use_panair`` is set; Mach numbers between the last
+subsonic and first supersonic solution are faired by
+:func:`panair.bridge.transonic_bridge`.  Otherwise they raise
+SolverError: a table never contains an unsolved number silently.
+
+Numeric-only.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+
+from ironbark_opt.errors import InputError, SolverError
+
+from .a502 import find_panair, run_panair
+from .bridge import transonic_bridge
+from .mesh import MeshOptions, RocketGeometry, mesh_rocket
+from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
+
+__all__ = ["sweep_pressure", "build_table", "SEA_LEVEL_RE_PER_M_PER_MACH"]
+
+#: rho0 a0 / mu0 of the ICAO standard atmosphere at sea level [1/m per unit Mach]
+SEA_LEVEL_RE_PER_M_PER_MACH = 1.225 * 340.294 / 1.7894e-5
+
+
+def _solve_one(args):
+    panels, mach, alphas, sref, lref, xref, rule = args
+    res = make_solver(panels, mach, sref=sref, lref=lref, xref=xref,
+                      pressure_rule=rule).solve(alphas)
+    return mach, np.array([[r.CA, r.CN, r.Cm] for r in res])
+
+
+def _panair_one(nets, mach, alphas, sref, lref, xref, symmetric, workdir):
+    rows = []
+    for a in alphas:                      # ALPC = alpha: one deck per angle
+        a_deg = math.degrees(a)
+        run = run_panair(nets, mach=mach, alpha_deg=a_deg, alpc_deg=a_deg, sref=sref, cref=lref,
+                         bref=lref, xref=xref, symmetric=symmetric, workdir=workdir)
+        f = run.forces[0]
+        rows.append([f.CA, f.CN, f.Cm])
+    return np.array(rows)
+
+
+def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float,
+                   xref: float, symmetric: bool = True, options: MeshOptions | None = None,
+                   pressure_rule: str = "second-order", workers: int = 2, progress: bool = True,
+                   use_panair: bool = False, panair_workdir=None, executor=None):
+    """Pressure CA, CN, Cm on a Mach x alpha grid.
+
+    Parameters
+    ----------
+    geometry : RocketGeometry [m]
+    mach : 1-D array [-]; alpha : 1-D array [rad]
+    sref : float [m^2]; lref : float [m]; xref : float [m] aft of the nose tip
+    symmetric : bool
+        Half model (no fin may lie in the x-z plane).
+    options : MeshOptions
+    pressure_rule : str
+    workers : int
+        Processes (Mach numbers in parallel); 1 = in this process.
+    executor : optional
+        Where the Mach numbers run instead (``"local:N"``, ``"dask://HOST:PORT"``,
+        a ``distributed.Client``; see :func:`ironbark_opt.executors.get_executor`).
+    progress : bool
+        tqdm progress bar on stderr.
+    use_panair : bool
+        Solve the supersonic Mach numbers with an external PANAIR instead.
+    panair_workdir : path, optional
+
+    Returns
+    -------
+    coefficients : dict name -> ndarray (n_mach, n_alpha) for CA, CN, Cm
+    info : dict (panels, solved / bridged / PANAIR Mach numbers, geometry hash)
+
+    Raises
+    ------
+    SolverError
+        A Mach number that cannot be solved (transonic without both sides,
+        superinclined panels, non-physical pressures), naming it.
+    """
+    mach = np.asarray(mach, float)
+    alpha = np.asarray(alpha, float)
+    if mach.ndim != 1 or alpha.ndim != 1 or np.any(np.diff(mach) <= 0) or np.any(np.diff(alpha) <= 0):
+        raise InputError("mach and alpha must be strictly increasing 1-D grids", field="mach/alpha")
+    nets = mesh_rocket(geometry, symmetric=symmetric, options=options)
+    panels = build_panels(nets, symmetric=symmetric)
+    sub = mach[mach <= MACH_SUBSONIC_MAX]
+    sup = mach[mach >= MACH_SUPERSONIC_MIN]
+    gap = mach[(mach > MACH_SUBSONIC_MAX) & (mach < MACH_SUPERSONIC_MIN)]
+    if use_panair and len(sup) and not find_panair():
+        raise SolverError("use_panair: no PANAIR executable (set IRONBARK_PANAIR or put "
+                          "'panair' on PATH)")
+    if len(gap) and (not len(sub) or not len(sup)):
+        raise SolverError(f"Mach {', '.join(f'{m:g}' for m in gap)} is transonic: it can only "
+                          "be bridged between a subsonic and a supersonic solution")
+    builtin = sub if use_panair else np.concatenate([sub, sup])
+    external = sup if use_panair else np.zeros(0)
+    results: dict[float, np.ndarray] = {}
+    jobs = [(panels, float(m), alpha, sref, lref, xref, pressure_rule) for m in builtin]
+    bar = None
+    if progress:
+        from tqdm import tqdm
+        bar = tqdm(total=len(builtin) + len(external), desc="panel solves (Mach)", unit="Mach")
+    try:
+        if executor is not None:          # cluster hook: one task per Mach (ironbark_opt.executors)
+            from ironbark_opt.executors import run_chunks, use_executor
+            with use_executor(executor) as ex:
+                done = run_chunks(ex, _solve_one, [(job,) for job in jobs], label="panel",
+                                  on_chunk=lambda i, k: bar.update() if bar else None)
+            results.update(dict(done))
+        elif workers > 1 and len(jobs) > 1:
+            with ProcessPoolExecutor(max_workers=workers) as pool:
+                for m, arr in pool.map(_solve_one, jobs):
+                    results[m] = arr
+                    if bar:
+                        bar.update()
+        else:
+            for job in jobs:
+                m, arr = _solve_one(job)
+                results[m] = arr
+                if bar:
+                    bar.update()
+        for m in external:
+            results[float(m)] = _panair_one(nets, float(m), alpha, sref, lref, xref, symmetric,
+                                            panair_workdir)
+            if bar:
+                bar.update()
+    finally:
+        if bar:
+            bar.close()
+    solved = np.array(sorted(results))
+    stack = np.array([results[m] for m in solved])            # (n_solved, n_alpha, 3)
+    full = transonic_bridge(solved, stack, mach) if len(gap) else stack
+    coeffs = {name: full[:, :, k] for k, name in enumerate(("CA", "CN", "Cm"))}
+    digest = hashlib.sha256()
+    for n in nets:
+        digest.update(n.name.encode())
+        digest.update(np.ascontiguousarray(np.round(n.points, 12)).tobytes())
+    info = {"panels": int(panels.n), "wake_panels": int(len(panels.wake_corners)),
+            "mach_solved_builtin": [float(m) for m in builtin],
+            "mach_solved_panair": [float(m) for m in external],
+            "mach_bridged": [float(m) for m in gap],
+            "geometry_hash": digest.hexdigest()[:16], "symmetric": bool(symmetric),
+            "pressure_rule": pressure_rule}
+    return coeffs, info
+
+
+def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float, xref: float,
+                friction=None, base_drag=None, symmetric: bool = True,
+                options: MeshOptions | None = None, workers: int = 2, progress: bool = True,
+                use_panair: bool = False, pressure_rule: str = "second-order",
+                extra_metadata: dict | None = None, executor=None):
+    """Sweep -> AeroTable with the viscous and base parts added.
+
+    Parameters
+    ----------
+    geometry : RocketGeometry [m]
+    mach : 1-D array [-]; alpha : 1-D array [rad]
+    sref : float [m^2]; lref : float [m]; xref : float [m]
+    friction : ironbark_opt.aero.friction.FrictionDrag, optional
+        Evaluated at the sea-level unit Reynolds number of each Mach number.
+    base_drag : ironbark_opt.aero.base_drag.BaseDrag, optional
+    symmetric, options, workers, progress, use_panair, pressure_rule, executor
+        As in :func:`sweep_pressure`.
+    extra_metadata : dict, optional
+
+    Returns
+    -------
+    ironbark_opt.aero.table.AeroTable with CA (total), CA_power_on, CN, Cm,
+    CA_pressure, CA_friction, CA_base.
+    """
+    from ironbark_opt import __version__
+    from ironbark_opt.aero.table import AeroTable
+    coeffs, info = sweep_pressure(geometry, mach, alpha, sref=sref, lref=lref, xref=xref,
+                                  symmetric=symmetric, options=options, workers=workers,
+                                  progress=progress, use_panair=use_panair,
+                                  pressure_rule=pressure_rule, executor=executor)
+    mach = np.asarray(mach, float)
+    n_a = len(alpha)
+    ones = np.ones((1, n_a))
+    includes = ["pressure"]
+    ca_f = np.zeros(len(mach))
+    if friction is not None:
+        re = np.maximum(mach, 1e-3) * SEA_LEVEL_RE_PER_M_PER_MACH
+        ca_f = np.asarray(friction.CA(mach, re), float)
+        includes.append("friction")
+    ca_b = np.zeros(len(mach))
+    ca_b_on = np.zeros(len(mach))
+    if base_drag is not None:
+        ca_b = np.asarray(base_drag.CA_power_off(mach), float)
+        ca_b_on = np.asarray(base_drag.CA_power_on(mach), float)
+        includes.append("base")
+    ca_p = coeffs["CA"]
+    table = {"CA": ca_p + ca_f[:, None] * ones + ca_b[:, None] * ones,
+             "CA_power_on": ca_p + ca_f[:, None] * ones + ca_b_on[:, None] * ones,
+             "CN": coeffs["CN"], "Cm": coeffs["Cm"], "CA_pressure": ca_p,
+             "CA_friction": ca_f[:, None] * ones, "CA_base": ca_b[:, None] * ones}
+    meta = {"generator": "ironbark panair.sweep (built-in panel solver)",
+            "version": __version__, "name": geometry.name, "body_axes": "x aft, z up; "
+            "alpha = total angle of attack (polar aeroballistic)",
+            "transonic_bridge": bool(info["mach_bridged"]),
+            "transonic_bridge_model": "monotone cubic Hermite (Fritsch & Carlson 1980)",
+            "friction_reynolds": "sea-level ISA unit Reynolds number at each Mach",
+            **info, **(extra_metadata or {})}
+    json.dumps(meta)   # must be serialisable
+    return AeroTable(mach, np.asarray(alpha, float), table, reference_area=sref,
+                     reference_length=lref, moment_reference_x=xref, includes=tuple(includes),
+                     metadata=meta)

@@ -1,0 +1,102 @@
+"""Mesher: network layout, orientation, enclosed volume, fin sections,
+half-model rules; VTK and picture export."""
+import numpy as np
+import pytest
+
+from ironbark_opt.errors import InputError
+from panair.lawgs import read_lawgs, write_lawgs
+from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
+from panair.solver import build_panels
+from panair.solver.influence import planar_corners
+from panair.vtk import write_vtk
+
+
+def _rocket(section="double_wedge", roll=np.pi / 4, **kw):
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=roll, section=section, **kw),)
+    return RocketGeometry(body, fins)
+
+
+def _volume(panels):
+    """Divergence theorem, F = (0, y, z)/2 (bases and y = 0 caps add nothing)."""
+    _, c, n, a = planar_corners(panels.corners)
+    return 0.5 * np.sum((c[:, 1] * n[:, 1] + c[:, 2] * n[:, 2]) * a)
+
+
+def test_body_only_volume_and_layout():
+    body = BodyGeometry(np.array([0.0, 3.0, 10.0]), np.array([0.0, 0.5, 0.5]))
+    nets = mesh_rocket(RocketGeometry(body), options=MeshOptions(n_theta=64))
+    assert [n.name for n in nets] == ["body", "base", "basewake"]
+    panels = build_panels([n for n in nets if n.kind != "wake"])
+    exact = np.pi * 0.25 * (3.0 / 3 + 7.0)           # cone + cylinder
+    # inscribed 64-gon: area factor sin(2pi/64)/(2pi/64)
+    poly = exact * np.sin(2 * np.pi / 64) / (2 * np.pi / 64)
+    print(f"volume {_volume(panels):.5f}, polygon {poly:.5f}, exact {exact:.5f}")
+    assert _volume(panels) == pytest.approx(poly, rel=2e-3)
+
+
+def test_half_model_fins_and_orientation():
+    nets = mesh_rocket(_rocket(), symmetric=True)
+    names = [n.name for n in nets]
+    assert names.count("fin0") == 1 and "fin1" in names and "fin2" not in names
+    panels = build_panels(nets, symmetric=True)        # checks orientation
+    assert len(panels.wake_corners) > 0 and np.all(panels.wake_upper >= 0)
+    full = build_panels(mesh_rocket(_rocket()), symmetric=False)
+    assert full.n == pytest.approx(2 * panels.n, rel=0.02)
+    # fin normals: outward from the fin mid-plane
+    fin = next(n for n in nets if n.name == "fin0")
+    _, c, nrm, _ = planar_corners(np.stack([fin.points[:-1, :-1], fin.points[:-1, 1:],
+                                            fin.points[1:, 1:], fin.points[1:, :-1]],
+                                           axis=2).reshape(-1, 4, 3))
+    e_t = np.array([0.0, np.cos(np.pi / 4), -np.sin(np.pi / 4)])
+    side = (c - np.array([0, 0, 0])) @ e_t
+    assert np.all(np.sign(nrm @ e_t)[np.abs(side) > 1e-6] == np.sign(side[np.abs(side) > 1e-6]))
+
+
+def test_fin_in_symmetry_plane_is_refused():
+    with pytest.raises(InputError, match="symmetry plane"):
+        mesh_rocket(_rocket(roll=0.0), symmetric=True)
+    mesh_rocket(_rocket(roll=0.0), symmetric=False)    # fine as a full model
+
+
+@pytest.mark.parametrize("section,area", [
+    ("double_wedge", 0.5 * 1.0 * 0.08),                 # diamond
+    ("square", 1.0 * 0.08 - 0.5 * 0.08 * 0.08),         # real LE, TE closed over t
+])
+def test_fin_section_area(section, area):
+    f = _rocket(section).fins[0]
+    xi = np.linspace(0, 1, 20001)
+    a = np.trapezoid(2 * f.half_thickness(xi, 1.0), xi)
+    assert a == pytest.approx(area, rel=1e-3)
+
+
+def test_hexagonal_section():
+    f = _rocket("double_wedge", le_bevel=0.2, te_bevel=0.1).fins[0]
+    h = f.half_thickness(np.array([0.0, 0.1, 0.2, 0.5, 0.9, 0.95, 1.0]), 1.0)
+    np.testing.assert_allclose(h, [0, 0.02, 0.04, 0.04, 0.04, 0.02, 0.0], atol=1e-12)
+
+
+def test_mesh_lawgs_round_trip_and_vtk(tmp_path):
+    nets = mesh_rocket(_rocket(), symmetric=True)
+    write_lawgs(tmp_path / "bf.wgs", nets, title="basic finner")
+    _, back = read_lawgs(tmp_path / "bf.wgs")
+    assert [n.shape for n in back] == [n.shape for n in nets]
+    panels = build_panels(nets, symmetric=True)
+    out = write_vtk(tmp_path / "bf.vtk", panels.corners, cp=np.zeros(panels.n),
+                    network=panels.network)
+    text = out.read_text().splitlines()
+    assert text[0].startswith("# vtk DataFile") and f"CELLS {panels.n} {5 * panels.n}" in text
+    with pytest.raises(InputError, match="cp has"):
+        write_vtk(tmp_path / "x.vtk", panels.corners, cp=np.zeros(3))
+
+
+def test_plots(tmp_path):
+    import matplotlib
+    matplotlib.use("Agg")
+    from panair.plots import plot_cp, plot_mesh
+    nets = mesh_rocket(_rocket(), symmetric=True, options=MeshOptions(n_chord=4, n_span=2))
+    panels = build_panels(nets, symmetric=True)
+    fig = plot_mesh(panels.corners, wake_corners=panels.wake_corners, filename=tmp_path / "m.png")
+    fig2 = plot_cp(panels.corners, panels.corners[:, 0, 0], filename=tmp_path / "cp.png")
+    assert (tmp_path / "m.png").stat().st_size > 1000 and (tmp_path / "cp.png").exists()
+    assert fig is not fig2

@@ -1,0 +1,105 @@
+"""Sweeps to AeroTable, transonic bridge, Rocket adapter."""
+import numpy as np
+import pytest
+
+from ironbark_opt.errors import InputError, SolverError
+from panair.bridge import transonic_bridge
+from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry
+from panair.sweep import build_table, sweep_pressure
+from panair.solver import build_panels, make_solver
+from panair.mesh import mesh_rocket
+
+COARSE = MeshOptions(n_theta=16, n_nose=8, body_spacing=1.0, n_chord=8, n_span=3)
+
+
+def _bf():
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]) * 0.03, np.array([0.0, 0.5, 0.5]) * 0.03)
+    fins = (FinGeometry(4, 0.03, 0.03, 0.03, 0.0, 0.27, 0.0024, roll=np.pi / 4),)
+    return RocketGeometry(body, fins, "bf30mm")
+
+
+def test_bridge_is_monotone_c1_and_exact_at_nodes():
+    m = np.array([0.6, 0.8, 0.9, 1.2, 1.5, 2.0])
+    v = np.array([0.01, 0.012, 0.02, 0.30, 0.25, 0.20])
+    out = np.linspace(0.6, 2.0, 1401)
+    y = transonic_bridge(m, v, out)
+    np.testing.assert_allclose(transonic_bridge(m, v, m), v, rtol=0, atol=1e-15)
+    inside = (out > 0.9) & (out < 1.2)
+    assert y[inside].min() >= 0.02 - 1e-12 and y[inside].max() <= 0.30 + 1e-12   # no overshoot
+    dy = np.diff(y) / np.diff(out)
+    assert np.max(np.abs(np.diff(dy))) < 0.05                # no slope jumps (C1)
+    with pytest.raises(InputError):
+        transonic_bridge(m, v, [2.5])
+
+
+def test_sweep_matches_direct_solve_and_parallel():
+    g = _bf()
+    alpha = np.radians([0.0, 3.0])
+    c1, info = sweep_pressure(g, [0.3, 0.7], alpha, sref=np.pi * 0.015**2, lref=0.03, xref=0.15,
+                              options=COARSE, workers=2, progress=False)
+    nets = mesh_rocket(g, symmetric=True, options=COARSE)
+    direct = make_solver(build_panels(nets, symmetric=True), 0.7, sref=np.pi * 0.015**2,
+                         lref=0.03, xref=0.15).solve(alpha)
+    np.testing.assert_allclose(c1["CN"][1], [r.CN for r in direct], rtol=1e-10, atol=1e-12)
+    np.testing.assert_allclose(c1["Cm"][1], [r.Cm for r in direct], rtol=1e-10, atol=1e-12)
+    assert info["panels"] == build_panels(nets, symmetric=True).n
+    assert info["mach_bridged"] == [] and len(info["geometry_hash"]) == 16
+
+
+def test_unsolvable_mach_is_an_error(monkeypatch):
+    monkeypatch.delenv("IRONBARK_PANAIR", raising=False)
+    monkeypatch.setenv("PATH", "/nonexistent")
+    with pytest.raises(SolverError, match="no PANAIR executable"):
+        sweep_pressure(_bf(), [0.5, 1.5], [0.0], sref=1e-3, lref=0.03, xref=0.15,
+                       options=COARSE, progress=False, use_panair=True)
+    with pytest.raises(SolverError, match="transonic"):
+        sweep_pressure(_bf(), [0.5, 1.0], [0.0], sref=1e-3, lref=0.03, xref=0.15,
+                       options=COARSE, progress=False)
+
+
+def test_build_table_totals(tmp_path):
+    from ironbark_opt.aero.base_drag import BaseDrag
+    from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
+    sref = np.pi * 0.015**2
+    fr = FrictionDrag([FrictionComponent.body("body", 0.3, 0.03)], sref)
+    bd = BaseDrag(sref, sref)
+    t = build_table(_bf(), [0.3, 0.6], np.radians([0.0, 4.0]), sref=sref, lref=0.03, xref=0.15,
+                    friction=fr, base_drag=bd, options=COARSE, workers=1, progress=False)
+    total = t.values("CA")
+    parts = t.values("CA_pressure") + t.values("CA_friction") + t.values("CA_base")
+    np.testing.assert_allclose(total, parts, rtol=1e-12)
+    # base drag part: Niskanen eq. 3.94 on the full base (= Sref here)
+    np.testing.assert_allclose(t.values("CA_base")[:, 0], 0.12 + 0.13 * np.array([0.3, 0.6])**2)
+    assert set(t.includes) == {"pressure", "friction", "base"}
+    assert t.metadata["panels"] > 0
+    paths = t.save(tmp_path / "bf")
+    assert all(p.exists() for p in paths)
+
+
+def test_rocket_adapter_example():
+    from pathlib import Path
+    from ironbark_opt.rocket import load_rocket_toml
+    from panair.geometry_adapter import from_rocket, is_symmetric
+    toml = Path(__file__).parents[2] / "examples" / "calisto" / "calisto.toml"
+    if not toml.exists():
+        pytest.skip("example rocket not present")
+    rocket = load_rocket_toml(toml).rocket
+    g = from_rocket(rocket)
+    assert is_symmetric(g)
+    assert g.body.x[-1] == pytest.approx(rocket.length())
+    assert g.body.r.max() == pytest.approx(rocket.max_radius())
+    panels = build_panels(mesh_rocket(g, symmetric=True), symmetric=True)
+    assert 1000 < panels.n < 4000
+
+
+def test_body_only_sweep_bridges_transonic():
+    body = BodyGeometry(np.array([0.0, 0.085, 0.3]), np.array([0.0, 0.015, 0.015]))
+    g = RocketGeometry(body, (), "cone-cylinder")
+    opt = MeshOptions(n_theta=12, n_nose=6, body_spacing=1.5)
+    mach = [0.5, 0.8, 1.0, 1.3, 1.6]
+    c, info = sweep_pressure(g, mach, np.radians([0.0, 4.0]), sref=np.pi * 0.015**2, lref=0.03,
+                             xref=0.15, options=opt, workers=1, progress=False)
+    assert info["mach_bridged"] == [1.0] and info["mach_solved_builtin"] == [0.5, 0.8, 1.3, 1.6]
+    ca = c["CA"][:, 0]
+    # supersonic wave drag of the cone nose >> subsonic pressure drag; bridge in between
+    assert ca[3] > 3 * abs(ca[1]) and min(ca[1], ca[3]) <= ca[2] <= max(ca[1], ca[3])
