@@ -83,6 +83,10 @@ def sensitivity_command(rocket, target, names, rail_exit, config, ballast_kg, ba
 @_common
 @click.option("--chunk", type=click.IntRange(min=1), default=250, show_default=True, help="Samples per batch.")
 @click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
+@click.option("--executor", default="local", show_default=True, metavar="local|local:N|dask://HOST:PORT",
+              help="Where the chunks run: this process, N local processes, or a Dask scheduler.")
+@click.option("--results-dir", "results_dir", type=click.Path(file_okay=False),
+              help="Stream each chunk to a Parquet file here; re-running into it resumes.")
 @click.option("--progress/--no-progress", default=True, help="Progress bar on stderr.")
 @click.option("--csv", "csv_path", type=_FILE_OUT, help="Write every sample (parameters and results).")
 @click.option("--histogram", "hist_path", type=_FILE_OUT, help="Write the apogee histogram (PNG/PDF/SVG).")
@@ -91,7 +95,8 @@ def sensitivity_command(rocket, target, names, rail_exit, config, ballast_kg, ba
 @json_option
 @handle_errors
 def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, ballast_kg,
-                       ballast_x_m, chunk, jit, progress, csv_path, hist_path, ellipse_path, as_json):
+                       ballast_x_m, chunk, jit, executor, results_dir, progress, csv_path, hist_path, ellipse_path,
+                       as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
     from ironbark_opt.analysis.montecarlo import montecarlo
@@ -99,7 +104,7 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m)
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
-                      progress=progress, parameters=overrides, jit=jit)
+                      progress=progress, parameters=overrides, jit=jit, executor=executor, output=results_dir)
     if csv_path:
         disp.to_dataframe().to_csv(csv_path, index=False)
     if hist_path or ellipse_path:

@@ -177,9 +177,6 @@ def _resolve_seed(seed, spec: DispersionSpec) -> int:
 
 
 def _check(samples, chunk, executor, target, band):
-    if executor not in (None, "local"):
-        raise InputError(f"executor {executor!r} is not available: only None or 'local' (threads on this "
-                         "machine) are supported so far", field="executor")
     for name, value in (("samples", samples), ("chunk", chunk)):
         if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
             raise InputError(f"{name} must be a positive integer, got {value!r}", field=name)
@@ -192,7 +189,8 @@ def _check(samples, chunk, executor, target, band):
 
 def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: bool = False, target=None,
                band: float | None = None, chunk: int = 250, executor=None, progress: bool = True,
-               parameters: Mapping[str, float] | None = None, jit: bool = False, model=None) -> Dispersion:
+               parameters: Mapping[str, float] | None = None, jit: bool = False, model=None,
+               output=None) -> Dispersion:
     """Fly ``samples`` dispersed copies of ``setup`` and collect statistics (numeric-only).
 
     Parameters
@@ -214,8 +212,9 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
     chunk : int
         Samples per :meth:`FlightModel.run_batch` call (results do not
         depend on it).
-    executor : None or "local"
-        Where to run: only this machine's threads for now.
+    executor : None, "local", "local:N", "dask://HOST:PORT", distributed.Client or Executor
+        Where the chunks run (:func:`ironbark_opt.executors.get_executor`);
+        results are bit-identical whatever the executor.
     progress : bool
         Show a progress bar (tqdm, on stderr).
     parameters : mapping, optional
@@ -225,14 +224,16 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
         Use C-compiled trajectory Functions (cached on disk).
     model : FlightModel, optional
         Reuse an already built model.
+    output : path-like, optional
+        Directory where each chunk's results stream to a Parquet file
+        (needs pyarrow); re-running the same study into it resumes,
+        recomputing only missing chunks.
 
     Returns
     -------
     Dispersion
     """
     from tqdm.auto import tqdm
-
-    from ironbark_opt.flight import flight_model
 
     _check(samples, chunk, executor, target, band)
     if not isinstance(spec, DispersionSpec):
@@ -248,26 +249,20 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
     t_start = time.perf_counter()
     p_nom = setup.nominal_parameters(**dict(parameters or {}))
     P = spec.sample(int(samples), p_nom, np.random.default_rng(seed))
-    model = model or flight_model(setup, jit=jit)
-    keys = ["apogee_agl", "t_apogee", "rail_exit_speed"]
-    parts: dict[str, list] = {k: [] for k in keys + ["x_apogee", "t_landing", "x_landing"]}
+    from ironbark_opt.executors import fly_samples
     with tqdm(total=int(samples), desc="Monte Carlo", unit="flight", disable=not progress, leave=False) as bar:
-        for a in range(0, int(samples), int(chunk)):
-            out = model.run_batch(P[:, a:a + int(chunk)], descent=descent)
-            for k in parts:
-                if k in out:
-                    parts[k].append(out[k])
-            bar.update(P[:, a:a + int(chunk)].shape[1])
-    x_a = np.hstack(parts["x_apogee"])
+        out = fly_samples(setup, P, descent=descent, chunk=int(chunk), executor=executor, output=output, jit=jit,
+                          model=model, on_chunk=bar.update)
+    x_a = out["x_apogee"]
     data = {"sample": np.arange(int(samples))}
     for name in spec.parameters:
         data[column_name(name)] = column_values(name, P[params.index(name)])
-    data.update(apogee_agl_m=np.concatenate(parts["apogee_agl"]), apogee_time_s=np.concatenate(parts["t_apogee"]),
-                rail_exit_speed_mps=np.concatenate(parts["rail_exit_speed"]),
+    data.update(apogee_agl_m=out["apogee_agl"], apogee_time_s=out["t_apogee"],
+                rail_exit_speed_mps=out["rail_exit_speed"],
                 apogee_east_m=x_a[0], apogee_north_m=x_a[1], apogee_drift_m=np.hypot(x_a[0], x_a[1]))
     if descent:
-        x_l = np.hstack(parts["x_landing"])
-        data.update(landing_time_s=np.concatenate(parts["t_landing"]), landing_east_m=x_l[0],
+        x_l = out["x_landing"]
+        data.update(landing_time_s=out["t_landing"], landing_east_m=x_l[0],
                     landing_north_m=x_l[1], landing_distance_m=np.hypot(x_l[0], x_l[1]))
     table = pd.DataFrame(data)
     outputs = [c for c in table.columns if c.startswith(("apogee_", "rail_exit_", "landing_"))]

@@ -163,9 +163,43 @@ def _solve_from_file(source: str, load_kwargs: dict, candidate: Candidate, targe
     return _solve_one(load_setup(source, **load_kwargs), candidate, target, kwargs)
 
 
+def _solve_shipped(payload, motor, target, kwargs):
+    """Executor task: one candidate on a shipped setup -> ("ok", solution) or ("error", message)."""
+    try:
+        return "ok", solve_ballast(dataclasses.replace(payload.load(), motor=motor), target, **kwargs)
+    except IronbarkError as err:
+        return "error", str(err)
+
+
+def _solve_on_executor(executor, setup, cands, target, kwargs, results, failures):
+    """Load each motor here, solve the candidates on ``executor`` (see :mod:`ironbark_opt.executors`)."""
+    from ironbark_opt.executors import SetupPayload, run_chunks, use_executor
+
+    with use_executor(executor) as ex:
+        if ex.in_process:
+            for c in cands:
+                try:
+                    results.append(_solve_one(setup, c, target, kwargs))
+                except IronbarkError as err:
+                    failures.append((c.label, str(err)))
+            return
+        payload, tasks, labels = SetupPayload.of(setup), [], []
+        for c in cands:
+            try:
+                tasks.append((payload, c.load(), target, kwargs))
+                labels.append(c.label)
+            except IronbarkError as err:
+                failures.append((c.label, str(err)))
+        for label, (status, value) in zip(labels, run_chunks(ex, _solve_shipped, tasks, label="motor")):
+            if status == "ok":
+                results.append(value)
+            else:
+                failures.append((label, value))
+
+
 def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least_ballast",
                  processes: int | None = None, load_kwargs: Mapping | None = None,
-                 progress: bool = False, **ballast_kwargs) -> MotorRanking:
+                 progress: bool = False, executor=None, **ballast_kwargs) -> MotorRanking:
     """Solve the ballast problem for each candidate motor and rank the results.
 
     Parameters
@@ -183,6 +217,10 @@ def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least
         Parallel runs rebuild the setup from ``setup.source`` in each worker.
     load_kwargs : mapping, optional
         Keyword arguments ``load_setup`` used for ``setup`` (rail_exit, ...).
+    executor : None, "local", "local:N", "dask://HOST:PORT", distributed.Client or Executor
+        Where candidates are solved (:func:`ironbark_opt.executors.get_executor`);
+        given, it replaces ``processes``: motors are loaded here and the
+        setup itself (forecast atmosphere included) is shipped to workers.
     ballast_kwargs
         Passed to :func:`solve_ballast` (mass_max, min_rail_speed, min_margin, ...).
     """
@@ -192,7 +230,9 @@ def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least
     n_proc = processes if processes is not None else min(len(cands), os.cpu_count() or 1)
     results: list = []
     failures: list = []
-    if n_proc > 1 and setup.source is not None and len(cands) > 1:
+    if executor is not None:
+        _solve_on_executor(executor, setup, cands, target, ballast_kwargs, results, failures)
+    elif n_proc > 1 and setup.source is not None and len(cands) > 1:
         with ProcessPoolExecutor(max_workers=n_proc) as pool:
             futures = [(c, pool.submit(_solve_from_file, setup.source, dict(load_kwargs or {}), c, target,
                                        ballast_kwargs)) for c in cands]
