@@ -5,6 +5,7 @@ functions in :mod:`ironbark_opt.plots`.
 """
 from __future__ import annotations
 
+import warnings
 import weakref
 from dataclasses import dataclass, field
 from typing import Mapping
@@ -15,6 +16,7 @@ import pandas as pd
 from ironbark_opt import params as params_mod
 from ironbark_opt.dynamics.model import FlightModel, Steps
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
+from ironbark_opt.errors import OutOfRangeWarning
 
 _MODELS: dict[int, tuple] = {}
 
@@ -164,6 +166,24 @@ def _summary(model: FlightModel, run: dict, df: pd.DataFrame) -> dict:
     return s
 
 
+def _warn_outside_table(setup, df: pd.DataFrame) -> None:
+    """Warn when the ascent left the aerodynamic table's grid (it was clamped)."""
+    table = getattr(setup.aero, "table", None)
+    if table is None:
+        return
+    up = df[df["phase"].isin(["rail", "boost", "coast"])]
+    m_lo, m_hi = table.mach_range
+    a_lo, a_hi = table.alpha_range
+    outside = []
+    if up["mach"].max() > m_hi * (1 + 1e-9):
+        outside.append(f"Mach up to {up['mach'].max():.3f} (table to {m_hi:g})")
+    if a_hi > a_lo and np.radians(up["alpha_deg"].max()) > a_hi * (1 + 1e-9):
+        outside.append(f"angle of attack up to {up['alpha_deg'].max():.1f} deg (table to {np.degrees(a_hi):.1f} deg)")
+    if outside:
+        warnings.warn(f"{setup.name}: the flight left the aerodynamic table's grid, coefficients were clamped: "
+                      + "; ".join(outside), OutOfRangeWarning, stacklevel=3)
+
+
 def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
              steps: Steps | None = None, jit: bool = False, descent: bool = False,
              model: FlightModel | None = None) -> Flight:
@@ -198,5 +218,6 @@ def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
     p = np.asarray(p, dtype=float).ravel()
     run = model.run(p, descent=descent)
     df = _table(model, run)
+    _warn_outside_table(setup, df)
     return Flight(name=setup.name, parameters=params_mod.to_dict(p), summary_values=_summary(model, run, df),
                   _table=df)
