@@ -81,8 +81,6 @@ def test_rocket_adapter_example():
     from ironbark_opt.rocket import load_rocket_toml
     from panair.geometry_adapter import from_rocket, is_symmetric
     toml = Path(__file__).parents[2] / "examples" / "calisto" / "calisto.toml"
-    if not toml.exists():
-        pytest.skip("example rocket not present")
     rocket = load_rocket_toml(toml).rocket
     g = from_rocket(rocket)
     assert is_symmetric(g)

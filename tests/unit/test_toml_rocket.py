@@ -256,11 +256,8 @@ def test_calisto_variants_with_errors(tmp_path, old, new, field):
 
 
 def test_calisto_launch_mass_with_the_motor_package():
-    """Cross-check with the motors package (skipped while it is not installed)."""
-    vehicle = pytest.importorskip("ironbark_opt.vehicle")
-    load_motor_for = getattr(vehicle, "load_motor_for", None)
-    if load_motor_for is None:
-        pytest.skip("ironbark_opt.vehicle.load_motor_for not available")
+    """Cross-check with the motors package (grain geometry -> propellant mass)."""
+    from ironbark_opt.vehicle import load_motor_for
     f = load_rocket_toml(CALISTO)
     motor = load_motor_for(f.motor)
     dry = f.rocket.dry_mass_properties()
