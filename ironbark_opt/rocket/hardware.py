@@ -15,6 +15,18 @@ from ironbark_opt import validate as v
 from ironbark_opt.rocket.mass import MassProperties
 
 
+def _check_tube(tube, **extra) -> None:
+    """Validate and normalise the fields every tube-like item has."""
+    ro = v.positive(tube.outer_radius, "outer_radius")
+    ri = v.nonnegative(tube.inner_radius, "inner_radius")
+    if not ri < ro:
+        raise InputError(f"inner_radius ({ri} m) must be smaller than outer_radius "
+                         f"({ro} m)", field="inner_radius")
+    v.set_fields(tube, x=v.nonnegative(tube.x, "x"), length=v.positive(tube.length, "length"),
+                 outer_radius=ro, inner_radius=ri,
+                 density=v.optional(v.positive, tube.density, "density", "kg/m^3"), **extra)
+
+
 @dataclass(frozen=True, kw_only=True)
 class PointMass:
     """A concentrated mass (avionics, recovery gear, bulkheads, ...).
@@ -111,15 +123,7 @@ class LaunchLug:
     name: str = "launch lug"
 
     def __post_init__(self):
-        ro = v.positive(self.outer_radius, "outer_radius")
-        ri = v.nonnegative(self.inner_radius, "inner_radius")
-        if not ri < ro:
-            raise InputError(f"inner_radius ({ri} m) must be smaller than outer_radius "
-                             f"({ro} m)", field="inner_radius")
-        v.set_fields(self, x=v.nonnegative(self.x, "x"),
-                     length=v.positive(self.length, "length"),
-                     outer_radius=ro, inner_radius=ri,
-                     density=v.optional(v.positive, self.density, "density", "kg/m^3"))
+        _check_tube(self)
 
     @property
     def rail_guides(self) -> tuple[float, float]:
@@ -171,16 +175,7 @@ class InnerTube:
     name: str = "inner tube"
 
     def __post_init__(self):
-        ro = v.positive(self.outer_radius, "outer_radius")
-        ri = v.nonnegative(self.inner_radius, "inner_radius")
-        if not ri < ro:
-            raise InputError(f"inner_radius ({ri} m) must be smaller than outer_radius "
-                             f"({ro} m)", field="inner_radius")
-        v.set_fields(self, x=v.nonnegative(self.x, "x"),
-                     length=v.positive(self.length, "length"),
-                     outer_radius=ro, inner_radius=ri,
-                     density=v.optional(v.positive, self.density, "density", "kg/m^3"),
-                     mass=v.optional(v.nonnegative, self.mass, "mass", "kg"))
+        _check_tube(self, mass=v.optional(v.nonnegative, self.mass, "mass", "kg"))
 
     def mass_properties(self) -> MassProperties:
         """The tube's mass build-up (numeric-only).
