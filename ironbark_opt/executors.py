@@ -314,32 +314,32 @@ _MODELS_LOCK = threading.Lock()
 _MODELS_KEEP = 4
 
 
-def discretisation(model) -> tuple[int, int]:
-    """``(n_boost, n_coast)`` RK4 steps of ``model`` (the client's, sent to workers)."""
+def discretisation(model) -> tuple[int, int, float]:
+    """``(n_boost, n_coast, coast_grading)`` of ``model`` (the client's, sent to workers)."""
     return model.discretisation()
 
 
-def _impose_steps(model, steps: tuple[int, int]) -> None:
+def _impose_steps(model, steps: tuple) -> None:
     # The grid is fixed from the nominal flight when a model is built, so a
     # worker's own choice equals the client's; imposing it also covers a
     # client that changed its grid (``set_discretisation``).
     model.set_discretisation(*steps)
 
 
-def worker_model(payload: SetupPayload, jit: bool = False, steps: tuple[int, int] | None = None):
+def worker_model(payload: SetupPayload, jit: bool = False, steps: tuple | None = None):
     """The FlightModel of ``payload``, built once per process and reused.
 
     Parameters
     ----------
     payload : SetupPayload
     jit : bool
-    steps : (int, int), optional
-        ``(n_boost, n_coast)`` imposed on the model (the client's
+    steps : (int, int, float), optional
+        ``(n_boost, n_coast, coast_grading)`` imposed on the model (the client's
         :func:`discretisation`), so every worker flies the same RK4 grid.
 
     Keyed by the payload digest, ``jit`` and ``steps``; the last few models are kept.
     """
-    key = (payload.digest, bool(jit), None if steps is None else tuple(int(n) for n in steps))
+    key = (payload.digest, bool(jit), None if steps is None else tuple(steps))
     with _MODELS_LOCK:
         model = _MODELS.get(key)
         if model is None:
@@ -390,7 +390,7 @@ def columns_batch(cols: dict) -> dict:
     return out
 
 
-def fly_chunk(payload: SetupPayload, steps: tuple[int, int], P: np.ndarray, start: int, descent: bool,
+def fly_chunk(payload: SetupPayload, steps: tuple, P: np.ndarray, start: int, descent: bool,
               jit: bool) -> dict:
     """Worker task: fly the columns of ``P`` (samples ``start...``) on the RK4 grid ``steps`` -> flat columns."""
     return batch_columns(worker_model(payload, jit, steps).run_batch(P, descent=descent), start)

@@ -26,13 +26,15 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics import rhs as rhs_mod
 from ironbark_opt.dynamics.frames import launch_quaternion, rail_direction_l, rotation_matrix
-from ironbark_opt.dynamics.integrator import compile_function, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, phase_trajectory, rk4_step
 from ironbark_opt.errors import InputError, SolverError
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
 #: |lambda| dt allowed for RK4 (its stability region reaches 2.78 on the real
 #: and 2.83 on the imaginary axis); chosen by the RK4-vs-DOP853 validation.
 STABLE_LAMBDA_DT = 1.5
+#: Fewest coast steps whatever the stiffness (accuracy of the coast's slow part).
+MIN_COAST_STEPS = 300
 
 
 @dataclass(frozen=True)
@@ -82,6 +84,7 @@ class FlightModel:
         self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
         self.trajectory, self._run = {}, {}
         self.n_coast = None              # chosen from the nominal flight's stiffness below
+        self.coast_grading = 1.0
         self._set_trajectory("rail", self.steps.n_rail)
         self._set_trajectory("boost", self.n_boost)
         self._build_events()
@@ -101,20 +104,26 @@ class FlightModel:
             raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs")
         self._ensure_stable(x_b, t_b, t_b + vz_b / G0 + 2.0, p)
 
-    def discretisation(self) -> tuple[int, int]:
-        """``(n_boost, n_coast)``: RK4 steps of the boost and coast phases."""
-        return int(self.n_boost), int(self.n_coast)
+    def discretisation(self) -> tuple[int, int, float]:
+        """``(n_boost, n_coast, coast_grading)``: the RK4 grid of boost and coast."""
+        return int(self.n_boost), int(self.n_coast), float(self.coast_grading)
 
-    def set_discretisation(self, n_boost: int, n_coast: int) -> None:
+    def set_discretisation(self, n_boost: int, n_coast: int, coast_grading: float = 1.0) -> None:
         """Impose a grid (e.g. the one a client chose, on a cluster worker)."""
-        if (int(n_boost), int(n_coast)) == self.discretisation():
+        if (int(n_boost), int(n_coast), float(coast_grading)) == self.discretisation():
             return
-        self.n_boost, self.n_coast = int(n_boost), int(n_coast)
+        self.n_boost, self.n_coast, self.coast_grading = int(n_boost), int(n_coast), float(coast_grading)
         self._set_trajectory("boost", self.n_boost)
         self._set_trajectory("coast", self.n_coast)
 
+    @property
+    def coast_fractions(self) -> np.ndarray:
+        """Coast step boundaries as fractions of the coast (n_coast + 1)."""
+        return grid_fractions(self.n_coast, self.coast_grading)
+
     def _set_trajectory(self, phase: str, n: int):
-        self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}")
+        grading = self.coast_grading if phase == "coast" else 1.0
+        self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
         self._run[phase] = compile_function(self.trajectory[phase]) if self.jit else self.trajectory[phase]
         for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0] == phase]:
             del self._map_cache[key]
@@ -143,6 +152,37 @@ class FlightModel:
         lam = max(np.max(np.abs(np.linalg.eigvals(np.array(jac(x[:, i], t[i], p[:, i]))))) for i in range(x.shape[1]))
         return STABLE_LAMBDA_DT / lam if lam > 0 else np.inf
 
+    def _coast_grid(self, x_b, t_b, t_end, p):
+        """(n_coast, grading) from the stiffness along the nominal coast.
+
+        A provisional uniform coast (stable at burnout, the stiffest point) is
+        flown; at ~30 states before apogee the largest eigenvalue
+        ``lambda(s)`` of the RHS Jacobian is taken, and for each grading ``a``
+        of :func:`~ironbark_opt.dynamics.integrator.grid_fractions` the
+        smallest ``n`` with ``span g_a'(s) lambda(s) / n <= STABLE_LAMBDA_DT``
+        everywhere; the cheapest (n, a) wins.  The stiffness falls with speed
+        and density, so finer steps after burnout and coarser ones near
+        apogee need about half the steps of a uniform grid.
+        """
+        span = float(t_end - t_b)
+        n_uni = max(self.steps.n_coast, int(math.ceil(span / self.stable_step(self.rhs["coast"], x_b, t_b, p))))
+        X = np.array(phase_trajectory(self.step["coast"], n_uni, "traj_coast_probe")(x_b, t_b, t_end, p))
+        vz = np.array(self._mapped("vz", n_uni)(X)).ravel()
+        k_top = int(np.argmax(vz <= 0)) if np.any(vz <= 0) else n_uni
+        idx = np.unique(np.linspace(0, max(k_top, 1), 30).astype(int))
+        states = np.column_stack([x_b] + [X[:, i - 1] for i in idx[1:]])
+        frac = idx / n_uni
+        lam = np.array([STABLE_LAMBDA_DT / self.stable_step(self.rhs["coast"], states[:, j], t_b + span * f, p)
+                        for j, f in enumerate(frac)])
+        best = None
+        for a in (1.0, 0.7, 0.5, 0.35, 0.25):
+            slope = a + 2.0 * (1.0 - a) * frac                    # g_a'(s)
+            n = int(math.ceil(np.max(span * slope * lam) / STABLE_LAMBDA_DT))
+            n = max(MIN_COAST_STEPS, 25 * int(math.ceil(n / 25)))
+            if best is None or n < best[0]:
+                best = (n, a)
+        return best
+
     def _ensure_stable(self, x_b, t_b, t_end, P):
         """First run: check the boost step and choose the coast steps from the
         stiffness at burnout (the fastest point of the flight)."""
@@ -154,9 +194,7 @@ class FlightModel:
             self.n_boost = int(math.ceil(self.n_boost * self.steps.dt_boost / dt_b))
             self._set_trajectory("boost", self.n_boost)
             rebuilt = True
-        dt_c = self.stable_step(self.rhs["coast"], x_b, t_b, P)
-        need = int(math.ceil(np.max(np.asarray(t_end) - np.asarray(t_b)) / dt_c))
-        self.n_coast = max(self.steps.n_coast, int(50 * math.ceil(need / 50)))
+        self.n_coast, self.coast_grading = self._coast_grid(x_b, t_b, t_end, P)
         self._set_trajectory("coast", self.n_coast)
         return rebuilt
 
@@ -298,8 +336,6 @@ class FlightModel:
         # Drag only shortens the coast below the vacuum time v_z / g; the margin
         # covers gravity falling off with height.
         t_end = t_b + vz_b / G0 + 2.0
-        if self._ensure_stable(x_b, t_b, t_end, p):
-            return self.run(p, descent=descent)
         for _ in range(3):
             X_coast = np.array(self._run["coast"](x_b, t_b, t_end, p))
             vz = np.array(self._mapped("vz", X_coast.shape[1])(X_coast)).ravel()
@@ -310,9 +346,11 @@ class FlightModel:
         else:
             raise SolverError("apogee not reached within the coast horizon")
         k = int(below[0])
-        dt_c = (t_end - t_b) / self.n_coast
+        fr = self.coast_fractions
+        span = t_end - t_b
+        dt_c = span * (fr[k + 1] - fr[k])
         x_k = x_b if k == 0 else X_coast[:, k - 1]
-        t_k = t_b + k * dt_c
+        t_k = t_b + span * fr[k]
         vz_k = vz_b if k == 0 else vz[k - 1]
         h0 = dt_c * vz_k / (vz_k - vz[k]) if vz_k != vz[k] else dt_c
         h = float(self.refine_in_step(self._mapped("apex", 1), x_k[:, None], np.array([t_k]), np.array([h0]),
@@ -321,7 +359,7 @@ class FlightModel:
         t_a = t_k + h
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
         t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], t_r + (t_b - t_r) * np.arange(1, n_b + 1) / n_b,
-                            t_b + dt_c * np.arange(1, k + 1), [t_a]])
+                            t_b + span * fr[1:k + 1], [t_a]])
         x = np.hstack([x0[:, None], X_rail, X_boost, X_coast[:, :k], x_a[:, None]])
         phase = np.array(["rail"] * (n_r + 1) + ["boost"] * n_b + ["coast"] * (k + 1))
         out = dict(t=t, x=x, phase=phase, p=p, t_rail=t_r, t_burnout=t_b, t_apogee=t_a,
@@ -402,8 +440,6 @@ class FlightModel:
         x_b = np.array(self._mapped("boost", n)(x_r, t_r[None, :], burn[None, :], P)).reshape(13, n, nb)[:, :, -1]
         vz_b = np.array(self._mapped("vz", n)(x_b)).ravel()
         t_end = burn + vz_b / G0 + 2.0
-        if self._ensure_stable(x_b[:, :1], burn[0], t_end.max(), P[:, :1]):
-            return self.run_batch(P, descent=descent)
         nc = self.n_coast
         Xc = np.array(self._mapped("coast", n)(x_b, burn[None, :], t_end[None, :], P)).reshape(13, n, nc)
         vz = np.array(self._mapped("vz", n * nc)(Xc.reshape(13, n * nc))).reshape(n, nc)
@@ -411,9 +447,11 @@ class FlightModel:
         if not np.all(below.any(axis=1)):
             raise SolverError("apogee not reached within the coast horizon for some samples")
         kc = np.argmax(below, axis=1)
-        dtc = (t_end - burn) / nc
+        fr = self.coast_fractions
+        span = t_end - burn
+        dtc = span * (fr[kc + 1] - fr[kc])
         x_k = np.where(kc[None, :] == 0, x_b, Xc[:, idx, np.maximum(kc - 1, 0)])
-        t_k = burn + kc * dtc
+        t_k = burn + span * fr[kc]
         vz_k = np.where(kc == 0, vz_b, vz[idx, np.maximum(kc - 1, 0)])
         vz_end = vz[idx, kc]
         h = dtc * vz_k / np.where(vz_k != vz_end, vz_k - vz_end, 1.0)
