@@ -16,5 +16,7 @@ def pytest_configure(config):
     import tempfile
     if "IRONBARK_CACHE_DIR" not in os.environ:
         os.environ["IRONBARK_CACHE_DIR"] = tempfile.mkdtemp(prefix="ironbark-test-cache-")
-    if "MPLCONFIGDIR" not in os.environ:
-        os.environ["MPLCONFIGDIR"] = tempfile.mkdtemp(prefix="ironbark-test-mpl-")
+    # Everything the tests (and the notebook kernels they start) write goes to temp dirs.
+    for var, prefix in (("MPLCONFIGDIR", "mpl"), ("IPYTHONDIR", "ipython"), ("JUPYTER_RUNTIME_DIR", "jupyter")):
+        if var not in os.environ:
+            os.environ[var] = tempfile.mkdtemp(prefix=f"ironbark-test-{prefix}-")
