@@ -13,6 +13,7 @@ import functools
 import json
 import math
 import sys
+import warnings
 
 import click
 import numpy as np
@@ -46,10 +47,15 @@ def emit(result: dict, as_json: bool, human: str) -> None:
         click.echo(human)
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    click.echo(f"warning: {message}", err=True)
+
+
 def handle_errors(func):
-    """Decorator: turn Ironbark errors into one-line messages and exit codes."""
+    """Decorator: one-line errors with exit codes, one-line warnings on stderr."""
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
+        warnings.showwarning = _show_warning
         try:
             return func(*args, **kwargs)
         except InputError as err:

@@ -17,7 +17,9 @@ CA_base`` where
   rho0 = 1.225 kg/m^3, a0 = 340.294 m/s, mu0 = 1.7894e-5 Pa s) — a table
   has no Reynolds axis, and sea level is where drag matters most;
 * ``CA_base`` is :class:`ironbark_opt.aero.base_drag.BaseDrag` (power
-  off; ``CA_power_on`` uses the jet area given).
+  off; ``CA_power_on`` uses the jet area given; its model, by default
+  McCoy's MC DRAG base pressure above Mach 1, is recorded in the metadata
+  as ``base_drag_model``).
 
 Supersonic Mach numbers are solved by the built-in supersonic solver, or
 by an external PANAIR when ``use_panair`` is set; Mach numbers between the last
@@ -227,6 +229,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
             "transonic_bridge": bool(info["mach_bridged"]),
             "transonic_bridge_model": "monotone cubic Hermite (Fritsch & Carlson 1980)",
             "friction_reynolds": "sea-level ISA unit Reynolds number at each Mach",
+            **({"base_drag_model": getattr(base_drag, "model", type(base_drag).__name__)}
+               if base_drag is not None else {}),
             **info, **(extra_metadata or {})}
     json.dumps(meta)   # must be serialisable
     return AeroTable(mach, np.asarray(alpha, float), table, reference_area=sref,

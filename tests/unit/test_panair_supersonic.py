@@ -80,3 +80,28 @@ def test_fin_shadow_separates_the_two_faces():
     assert not sh[np.ix_(up, up)].any() and not np.diag(sh).any()
     nose = np.nonzero(c[keep][:, 0] < 2.0)[0]
     assert not sh[nose].any()                                      # the nose sees every fin face
+
+
+def test_singular_panels_carrying_load_are_reported():
+    """A few out-of-range panels are tolerated only while their load is negligible
+    (BAD_FORCE_MAX): one panel with Cp = -1e6 on a tiny area must be reported."""
+    from panair.solver.supersonic import BAD_FORCE_MAX
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
+    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
+    panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
+                          symmetric=True)
+    solver = make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+    res = solver.solve(np.radians([2.0]))[0]
+    cp = res.cp[panels.integrate]
+    sel = np.ones(cp.size, bool)
+    assert solver._bad_load(cp, sel) < 1.0                  # the real solution passes
+    k = int(np.argmin(solver._area))                        # smallest panel
+    bad = cp.copy()
+    bad[k] = -1e6
+    load = solver._bad_load(bad, sel)
+    expected = 2 * 1e6 * solver._area[k] / (np.pi / 4) / BAD_FORCE_MAX   # |CN| or |CA| bound
+    print(f"\nsingular panel: area {solver._area[k]:.2e}, load {load:.3g} x tolerance")
+    assert load > 1.0 and load > 0.1 * expected
+    bad[k] = -1.0                                           # out of range but negligible
+    assert 0.0 < solver._bad_load(bad, sel) < 1.0

@@ -72,6 +72,7 @@ def test_build_table_totals(tmp_path):
     np.testing.assert_allclose(t.values("CA_base")[:, 0], 0.12 + 0.13 * np.array([0.3, 0.6])**2)
     assert set(t.includes) == {"pressure", "friction", "base"}
     assert t.metadata["panels"] > 0
+    assert t.metadata["base_drag_model"] == "mccoy"
     paths = t.save(tmp_path / "bf")
     assert all(p.exists() for p in paths)
 

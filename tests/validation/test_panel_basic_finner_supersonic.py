@@ -8,12 +8,11 @@ on Ironbark's own mesh.
 2. vs the free-flight range data (Dupuis & Hathaway 1997, DREV-TM-9703,
    tests/data/panair/basic_finner/basic_finner_range.csv), with the
    tangent-cone nose correction: the issue's targets are CN-alpha within
-   10 % and Cm-alpha within 15 %.  Measured: CN-alpha within 4 % except
-   +10.4 % at Mach 2.718; Cm-alpha within 6 % up to Mach 3.147, but
-   +43 % / +67 % at Mach 3.734 / 4.3 (centre of pressure ~0.6 cal too far
-   aft).  Those misses, and the total CX0 (pressure + friction + base,
-   14-22 % low: the base-drag model's 0.25/M is too small for this
-   projectile), are printed as NOT MET; everything else is asserted.
+   10 %, Cm-alpha within 15 % and the total CX0 (panel pressure + skin
+   friction + base drag, McCoy's MC DRAG base pressure, see
+   ironbark_opt/aero/base_drag.py) within 10 % for Mach 1.3-4.3.
+   Misses are printed as NOT MET (see RANGE_CASES); everything else is
+   asserted.
 3. Mach 2.0 exactly is a Mach-cone coincidence on this mesh: the solver
    must report it (SolverError), not return numbers.
 
@@ -64,10 +63,24 @@ def test_supersonic_basic_finner_vs_panair(panels, mach):
     assert abs(e[0]) < 0.05 and abs(e[1]) < 0.05 and abs(e[2]) < 0.10
 
 
-# (mach, assert CN-alpha within 10 %, assert Cm-alpha within 15 %): measured,
-# see the module docstring; the others are printed as NOT MET
-RANGE_CASES = ((1.832, True, True), (2.375, True, True), (2.718, False, True),
-               (3.147, True, True), (3.734, True, False), (4.300, True, False))
+# (mach, assert CN-alpha within 10 %, assert Cm-alpha within 15 %): measured;
+# the others are printed as NOT MET.  CX0 with MC DRAG's base pressure applied as
+# published (incl. its boundary-layer relief) is -11 ... -16 % low: printed NOT MET
+# beyond the issue's 10 %; asserted within 20 % (the old 0.25/M base drag was
+# 14-22 % low).  Cm-alpha at Mach 3.7 / 4.3 (diagnosis, not fixed):
+# the nose is not the cause - with the tangent-cone pressures the cone carries
+# CN-alpha 2.2 /rad (slender-body theory: 2; linear theory gives 6.7
+# and 11.8), and the total CN-alpha is right (-3 / +2 %), so the missing nose-up
+# moment is a distribution error: the fins carry 4.9 / 4.7 of CN-alpha at
+# x = 9.36 cal where the range data imply about 3.9-4.4.  Below Mach 3.1 the
+# over-predicted linear-theory nose (CN-alpha 3.0 vs 2.2-2.5) hides the same
+# deficit.  The fin load at Mach 4.3 depends strongly on the pressure rule
+# (Cm-alpha -13.1 second-order, -10.1 linear, -9.1 isentropic), i.e. on terms
+# beyond linear theory, and viscous effects (fin roots in the thick body
+# boundary layer) are outside a potential solver.
+RANGE_CASES = ((1.293, False, True), (1.832, True, True), (2.375, True, True),
+               (2.718, False, True), (3.147, True, True), (3.734, True, False),
+               (4.300, True, False))
 
 
 @pytest.mark.slow
@@ -80,26 +93,45 @@ def test_supersonic_basic_finner_vs_range_data(panels):
     sref = np.pi * d**2 / 4
     friction = FrictionDrag([FrictionComponent.body("body", 10 * d, d),
                              FrictionComponent.fins("fins", 2 * 4 * d * d, d, 0.08 * d)], sref)
-    base = BaseDrag(sref, sref)
+    base = BaseDrag(sref, sref, afterbody_calibers=7.16)   # cylinder 7.16 cal behind the cone
     for mach, check_cn, check_cm in RANGE_CASES:
         cna, cma, ca0 = _derivs(panels, mach)
         r = rng.loc[mach]
         e_cn = cna / r["CNa_per_rad"] - 1
         e_cm = cma / r["CMa_per_rad"] - 1
-        cx0 = ca0 + float(friction.CA(mach, mach * SEA_LEVEL_RE_PER_M_PER_MACH)) \
-            + float(base.CA_power_off(mach))
+        ca_f = float(friction.CA(mach, mach * SEA_LEVEL_RE_PER_M_PER_MACH))
+        ca_b = float(base.CA_power_off(mach))
+        cx0 = ca0 + ca_f + ca_b
         e_cx = cx0 / r["CX0"] - 1
         print(f"\nBasic Finner M{mach} vs range: CNa {cna:.2f} / {r['CNa_per_rad']:.2f} "
               f"({100 * e_cn:+.1f} %{'' if check_cn else ', NOT MET'}), Cma {cma:.2f} / "
               f"{r['CMa_per_rad']:.2f} ({100 * e_cm:+.1f} %{'' if check_cm else ', NOT MET'}), "
-              f"CX0 {cx0:.3f} / {r['CX0']:.3f} ({100 * e_cx:+.1f} %, NOT MET: base drag)")
+              f"CX0 {ca0:.3f} + {ca_f:.3f} + {ca_b:.3f} = {cx0:.3f} / {r['CX0']:.3f} "
+              f"({100 * e_cx:+.1f} %{'' if abs(e_cx) < 0.10 else ', NOT MET'})")
         if check_cn:
             assert abs(e_cn) < 0.10
         if check_cm:
             assert abs(e_cm) < 0.15
+        assert abs(e_cx) < 0.20
 
 
 @pytest.mark.slow
 def test_mach_cone_coincidence_is_reported(panels):
     with pytest.raises(SolverError, match="non-physical surface pressure"):
         make_solver(panels, 2.0, sref=np.pi / 4, lref=1.0, xref=5.0).solve(ALPHAS)
+
+
+@pytest.mark.slow
+def test_tip_cap_singularity_is_reported():
+    """The Basic Finner meshed pitched 2 deg nose-up (wind axes, as PANAIR's
+    ALPC = alpha would) puts a tip-cap panel on a Mach-cone coincidence at
+    Mach 2.375: Cp ~ -2e8 on 0.09 % of the wetted area, CN ~ 9e5.  The
+    area rule alone let it through; the load rule (BAD_FORCE_MAX) reports it."""
+    import dataclasses
+    a = np.radians(2.0)
+    rot = np.array([[np.cos(a), 0, np.sin(a)], [0, 1, 0], [-np.sin(a), 0, np.cos(a)]])
+    nets = [dataclasses.replace(n, points=n.points @ rot.T)
+            for n in mesh_rocket(basic_finner(), symmetric=True)]
+    pitched = build_panels(nets, symmetric=True)
+    with pytest.raises(SolverError, match="tolerated load"):
+        make_solver(pitched, 2.375, sref=np.pi / 4, lref=1.0, xref=5.0).solve(0.0)
