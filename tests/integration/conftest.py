@@ -162,3 +162,13 @@ def net_env(tmp_path, monkeypatch):
 def cache_files(cache: Path) -> list[Path]:
     """All files in the cache, including any leftover temporary files."""
     return sorted(p for p in cache.rglob("*") if p.is_file()) if cache.exists() else []
+
+
+THRUSTCURVE_API = "/api/v1"
+
+
+@pytest.fixture
+def tc_server(loopback, net_env, monkeypatch):
+    """The loopback server standing in for ThrustCurve.org (API under ``/api/v1``)."""
+    monkeypatch.setenv("IRONBARK_THRUSTCURVE_URL", loopback.url + THRUSTCURVE_API)
+    return loopback

@@ -1,4 +1,4 @@
-"""``ironbark motor search`` / ``ironbark motor get`` against the loopback server."""
+"""``ironbark motor search`` / ``ironbark motor get`` against the loopback tc_server."""
 from __future__ import annotations
 
 import json
@@ -14,14 +14,8 @@ TC = Path(__file__).resolve().parents[1] / "data" / "thrustcurve"
 API = "/api/v1"
 
 
-@pytest.fixture
-def server(loopback, net_env, monkeypatch):
-    monkeypatch.setenv("IRONBARK_THRUSTCURVE_URL", loopback.url + API)
-    return loopback
-
-
-def test_search_json(server):
-    server.route(f"{API}/search.json", TC / "search-GET-manufacturer.json")
+def test_search_json(tc_server):
+    tc_server.route(f"{API}/search.json", TC / "search-GET-manufacturer.json")
     res = CliRunner().invoke(main, ["motor", "search", "--manufacturer", "Estes", "--json"])
     assert res.exit_code == 0, res.output
     out = json.loads(res.output)
@@ -31,16 +25,16 @@ def test_search_json(server):
     assert first["burn_time_s"] == 0.25 and first["diameter_mm"] == pytest.approx(13.0)
 
 
-def test_search_human_and_empty(server):
-    server.route(f"{API}/search.json", TC / "search-GET-empty.json")
+def test_search_human_and_empty(tc_server):
+    tc_server.route(f"{API}/search.json", TC / "search-GET-empty.json")
     res = CliRunner().invoke(main, ["motor", "search", "--class", "Z", "--diameter-mm", "54"])
     assert res.exit_code == 0 and "no motors match" in res.output
-    assert server.requests[-1]["query"]["diameter"] == ["54"]
+    assert tc_server.requests[-1]["query"]["diameter"] == ["54"]
 
 
-def test_get_writes_file_and_summary(server, tmp_path):
-    server.route(f"{API}/search.json", TC / "search-GET-designation-K550W.json")
-    server.route(f"{API}/download.json", TC / "download-POST-motorId.json")
+def test_get_writes_file_and_summary(tc_server, tmp_path):
+    tc_server.route(f"{API}/search.json", TC / "search-GET-designation-K550W.json")
+    tc_server.route(f"{API}/download.json", TC / "download-POST-motorId.json")
     res = CliRunner().invoke(main, ["motor", "get", "K550W", "-o", str(tmp_path), "--json"])
     assert res.exit_code == 0, res.output
     out = json.loads(res.output)
@@ -53,25 +47,25 @@ def test_get_writes_file_and_summary(server, tmp_path):
     assert "wrote" in res.output
 
 
-def test_get_plot(server, tmp_path):
+def test_get_plot(tc_server, tmp_path):
     pytest.importorskip("ironbark_opt.motors.rasp")
-    server.route(f"{API}/search.json", TC / "search-GET-designation-K550W.json")
-    server.route(f"{API}/download.json", TC / "download-POST-motorId.json")
+    tc_server.route(f"{API}/search.json", TC / "search-GET-designation-K550W.json")
+    tc_server.route(f"{API}/download.json", TC / "download-POST-motorId.json")
     res = CliRunner().invoke(main, ["motor", "get", "K550W", "-o", str(tmp_path), "--plot"])
     assert res.exit_code == 0, res.output
     assert (tmp_path / "AeroTech_K550W.png").stat().st_size > 1000
 
 
-def test_errors_exit_codes(server):
-    server.route(f"{API}/search.json", TC / "search-GET-empty.json")
+def test_errors_exit_codes(tc_server):
+    tc_server.route(f"{API}/search.json", TC / "search-GET-empty.json")
     res = CliRunner().invoke(main, ["motor", "get", "Z9999"])
     assert res.exit_code == 2 and "error:" in res.output and "no motor called" in res.output
-    server.routes.clear()
+    tc_server.routes.clear()
     res = CliRunner().invoke(main, ["motor", "search", "--manufacturer", "Estes"])
     assert res.exit_code == 3 and "HTTP 404" in res.output
 
 
-def test_offline_flag_restores_environment(server):
+def test_offline_flag_restores_environment(tc_server):
     res = CliRunner().invoke(main, ["motor", "search", "--manufacturer", "X", "--offline"])
     assert res.exit_code == 3 and "offline mode" in res.output
     assert "IRONBARK_OFFLINE" not in os.environ

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from panair.lawgs import Network
+from panel_quadrature import quad_samples
 from panair.solver.influence import influence_matrices, planar_corners
 from panair.solver.panels import build_panels
 from panair.solver.subsonic import SubsonicSolver
@@ -11,14 +12,7 @@ from panair.solver.subsonic import SubsonicSolver
 
 def _quadrature(quad, p, n=600):
     """Midpoint-rule integrals of 1/r and n.(P-Q)/r^3 over a planar quad."""
-    g = (np.arange(n) + 0.5) / n
-    u, v = np.meshgrid(g, g, indexing="ij")
-    q = quad
-    pts = ((1 - u)[..., None] * (1 - v)[..., None] * q[0] + (1 - u)[..., None] * v[..., None] * q[1]
-           + u[..., None] * v[..., None] * q[2] + u[..., None] * (1 - v)[..., None] * q[3])
-    du = (1 - v)[..., None] * (q[3] - q[0]) + v[..., None] * (q[2] - q[1])
-    dv = (1 - u)[..., None] * (q[1] - q[0]) + u[..., None] * (q[2] - q[3])
-    jac = np.linalg.norm(np.cross(du, dv), axis=-1) / n**2
+    pts, jac = quad_samples(quad, n)
     R = p - pts
     r = np.linalg.norm(R, axis=-1)
     return jac, R, r

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from ironbark_opt.errors import SolverError
+from panel_quadrature import quad_samples
 from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
 from panair.solver import build_panels, make_solver
 from panair.solver.influence import planar_corners
@@ -12,14 +13,7 @@ from panair.solver.supersonic_influence import panel_frames, source_potential
 
 
 def _brute(quad, P, n=700):
-    g = (np.arange(n) + 0.5) / n
-    u, v = np.meshgrid(g, g, indexing="ij")
-    q = quad
-    pts = ((1 - u)[..., None] * (1 - v)[..., None] * q[0] + (1 - u)[..., None] * v[..., None] * q[1]
-           + u[..., None] * v[..., None] * q[2] + u[..., None] * (1 - v)[..., None] * q[3])
-    du = (1 - v)[..., None] * (q[3] - q[0]) + v[..., None] * (q[2] - q[1])
-    dv = (1 - u)[..., None] * (q[1] - q[0]) + u[..., None] * (q[2] - q[3])
-    jac = np.linalg.norm(np.cross(du, dv), axis=-1) / n**2
+    pts, jac = quad_samples(quad, n)
     d = P - pts
     H = d[..., 0] ** 2 - d[..., 1] ** 2 - d[..., 2] ** 2
     ok = (d[..., 0] > 0) & (H > 0)
