@@ -42,3 +42,12 @@ def set_fields(obj, **values) -> None:
     """Store validated values on a frozen dataclass instance."""
     for key, val in values.items():
         object.__setattr__(obj, key, val)
+
+
+def is_float(text: str) -> bool:
+    """True when ``text`` parses as a float (table/CSV sniffing)."""
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False

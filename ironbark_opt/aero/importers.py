@@ -28,6 +28,7 @@ from scipy.interpolate import make_interp_spline
 
 from ironbark_opt.aero.table import AeroTable, spline_degree
 from ironbark_opt.errors import InputError, OutOfRangeWarning
+from ironbark_opt.validate import is_float
 
 _DUPLICATE_POLICIES = ("error", "mean")
 _POWER_OFF_NAMES = ("cdpoweroff", "capoweroff", "cdoff", "cd", "cd0", "dragcoefficient", "ca")
@@ -69,10 +70,10 @@ def _read_numeric_csv(path):
             try:
                 values = [float(f) for f in rec]
             except ValueError:
-                if header is None and not rows and not any(_is_float(f) for f in rec):
+                if header is None and not rows and not any(is_float(f) for f in rec):
                     header, header_line = rec, lineno
                     continue
-                bad = next(f for f in rec if not _is_float(f))
+                bad = next(f for f in rec if not is_float(f))
                 col = header[rec.index(bad)] if header and rec.index(bad) < len(header) else None
                 raise InputError(f"{bad!r} is not a number", source=path, line=lineno,
                                  field=col) from None
@@ -101,7 +102,7 @@ def _read_text_csv(path):
             if not any(rec) or rec[0].startswith("#"):
                 continue
             if header is None:
-                if all(_is_float(f) for f in rec if f):
+                if all(is_float(f) for f in rec if f):
                     raise InputError("a coefficient table needs a header (mach, alpha_deg, CA, CN, "
                                      "Cm, ...)", source=path, line=lineno)
                 header, hline = rec, lineno
@@ -126,14 +127,6 @@ def _numeric_column(rows, i, header, path) -> np.ndarray:
         if not math.isfinite(out[k]):
             raise InputError(f"{rec[i]!r} is not finite", source=path, line=lineno, field=header[i])
     return out
-
-
-def _is_float(text: str) -> bool:
-    try:
-        float(text)
-        return True
-    except ValueError:
-        return False
 
 
 def _find_column(header, candidates, path, line, what):

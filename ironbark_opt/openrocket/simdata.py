@@ -19,6 +19,7 @@ import pandas as pd
 from ironbark_opt.errors import InputError
 from ironbark_opt.openrocket.xmlread import Element
 from ironbark_opt.rocket.specs import LaunchSpec
+from ironbark_opt.validate import is_float
 
 #: OpenRocket column name -> our unit-suffixed name (SI; OpenRocket stores SI)
 COLUMNS = {
@@ -148,14 +149,6 @@ def _launch(cond: Element) -> tuple[LaunchSpec, bool]:
     return spec, into_wind
 
 
-def _is_float(text: str) -> bool:
-    try:
-        float(text)
-        return True
-    except ValueError:
-        return False
-
-
 def _branch(db: Element) -> pd.DataFrame:
     types = [t.strip() for t in (db.attr("types") or "").split(",")]
     if not types or not types[0]:
@@ -169,7 +162,7 @@ def _branch(db: Element) -> pd.DataFrame:
         try:
             rows.append([float(v) for v in vals])      # float() also reads NaN
         except ValueError:
-            bad = next(v for v in vals if not _is_float(v))
+            bad = next(v for v in vals if not is_float(v))
             raise dp.error(f"datapoint value {bad.strip()!r} is not a number") from None
     df = pd.DataFrame(rows, columns=[column_name(t) for t in types], dtype=float)
     return df
