@@ -32,6 +32,8 @@ Numeric-only.
 """
 from __future__ import annotations
 
+import abc
+
 import hashlib
 import json
 import os
@@ -56,7 +58,7 @@ _INSTALL_HINT = "install the optional extra: pip install 'ironbark-opt[dask]'"
 
 
 # ---------------------------------------------------------------- executors
-class Executor:
+class Executor(abc.ABC):
     """Runs ``func(*args)`` for every ``args`` in a task list (abstract).
 
     Attributes
@@ -71,9 +73,9 @@ class Executor:
     name = "executor"
     in_process = False
 
+    @abc.abstractmethod
     def map_unordered(self, func: Callable, tasks: Sequence[tuple], *, label: str = "task") -> Iterator:
         """Yield ``(index, func(*tasks[index]))`` as tasks finish (any order)."""
-        raise NotImplementedError
 
     def close(self) -> None:
         """Release what this executor started (nothing by default)."""

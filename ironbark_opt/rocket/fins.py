@@ -18,6 +18,8 @@ transverse moments.
 """
 from __future__ import annotations
 
+import abc
+
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -33,7 +35,7 @@ N_STRIPS = 400
 
 
 @dataclass(frozen=True, kw_only=True)
-class FinSet:
+class FinSet(abc.ABC):
     """Storage common to all fin sets (methods numeric-only).
 
     Parameters
@@ -82,17 +84,17 @@ class FinSet:
                      mass=v.optional(v.nonnegative, self.mass, "mass", "kg"))
 
     # -- planform (subclasses) ------------------------------------------------------------
+    @abc.abstractmethod
     def planform_points(self, n: int = 64) -> np.ndarray:
         """Outline of one fin, ``(k, 2)`` local ``(xi, y)`` [m] from root LE to root TE."""
-        raise NotImplementedError
 
+    @abc.abstractmethod
     def _strips(self, n: int):
         """``(y, dy, xi_le, chord)`` [m] of spanwise strips (numeric)."""
-        raise NotImplementedError
 
+    @abc.abstractmethod
     def planform_area(self) -> float:
         """Area of one fin's planform [m^2]."""
-        raise NotImplementedError
 
     # -- derived ------------------------------------------------------------------------------
     @property

@@ -19,6 +19,8 @@ the piecewise-linear profile.
 """
 from __future__ import annotations
 
+import abc
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,7 +36,7 @@ _GL_T, _GL_W = np.polynomial.legendre.leggauss(3)
 
 
 @dataclass(frozen=True, kw_only=True)
-class BodyOfRevolution:
+class BodyOfRevolution(abc.ABC):
     """Common storage of axisymmetric body components (methods numeric-only).
 
     Parameters
@@ -83,8 +85,9 @@ class BodyOfRevolution:
         inside = (local >= 0.0) & (local <= self.length)
         return np.where(inside, self._local_radius(np.clip(local, 0.0, self.length)), 0.0)
 
+    @abc.abstractmethod
     def _local_radius(self, local):
-        raise NotImplementedError
+        """Implemented by each subclass."""
 
     @property
     def x_end(self) -> float:
