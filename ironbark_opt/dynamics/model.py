@@ -184,19 +184,14 @@ class FlightModel:
         return best
 
     def _ensure_stable(self, x_b, t_b, t_end, P):
-        """First run: check the boost step and choose the coast steps from the
-        stiffness at burnout (the fastest point of the flight)."""
-        if self.n_coast is not None:
-            return False
-        rebuilt = False
+        """Refine the boost step if burnout (the stiffest point) needs it and
+        choose the coast grid (:meth:`_coast_grid`); called once, at build."""
         dt_b = self.stable_step(self.rhs["boost"], x_b, t_b, P)
         if self.steps.dt_boost > dt_b:
             self.n_boost = int(math.ceil(self.n_boost * self.steps.dt_boost / dt_b))
             self._set_trajectory("boost", self.n_boost)
-            rebuilt = True
         self.n_coast, self.coast_grading = self._coast_grid(x_b, t_b, t_end, P)
         self._set_trajectory("coast", self.n_coast)
-        return rebuilt
 
     # ------------------------------------------------------------------ symbolic
     def initial_state(self, p):
