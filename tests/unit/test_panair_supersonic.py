@@ -99,3 +99,30 @@ def test_singular_panels_carrying_load_are_reported():
     assert load > 1.0 and load > 0.1 * expected
     bad[k] = -1.0                                           # out of range but negligible
     assert 0.0 < solver._bad_load(bad, sel) < 1.0
+
+
+def test_bad_load_tolerance_grows_with_the_case_force():
+    """The tolerated load of out-of-range panels is max(BAD_FORCE_MAX,
+    BAD_FORCE_FRACTION x the in-range force): the same corner singularity is
+    reported at alpha 1 deg and tolerated at alpha 10 deg, where the in-range
+    panels carry enough force for it to be negligible."""
+    from panair.solver.supersonic import BAD_FORCE_FRACTION, BAD_FORCE_MAX
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
+    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
+    panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
+                          symmetric=True)
+    solver = make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+    lo, hi = solver.solve(np.radians([1.0, 10.0]))
+    tol_hi = BAD_FORCE_FRACTION * max(abs(hi.CA), abs(hi.CN))
+    assert tol_hi > 1.5 * BAD_FORCE_MAX                     # the relative part governs at 10 deg
+    sel = np.ones(int(panels.integrate.sum()), bool)
+    k = int(np.argmin(solver._area))
+    # Cp beyond vacuum on panel k whose force (either side of the half model)
+    # lies between BAD_FORCE_MAX and the alpha-10 tolerance
+    target = 0.5 * (BAD_FORCE_MAX + tol_hi)
+    cp_k = -target * (np.pi / 4) / (2 * solver._area[k] * np.abs(solver._nrm[k]).max())
+    for res, reported in ((lo, True), (hi, False)):
+        cp = res.cp[panels.integrate].copy()
+        cp[k] = cp_k
+        assert (solver._bad_load(cp, sel) > 1.0) == reported

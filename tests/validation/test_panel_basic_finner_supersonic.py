@@ -15,8 +15,12 @@ on Ironbark's own mesh.
    asserted.
 3. Mach 2.0 exactly is a Mach-cone coincidence on this mesh: the solver
    must report it (SolverError), not return numbers.
+4. Mesh convergence at Mach 1.6: the default mesh vs the twice-finer one
+   (every count doubled, ~4x the panels) in CN-alpha, Cm-alpha and CA at
+   alpha 0; the issue's 2 % is not met (printed), see the test.
 
-Slow: ~7 s per Mach number (about a minute in all).
+Slow: ~10 s per Mach number (about two minutes in all), plus ~3 minutes
+for the twice-finer mesh.
 """
 from pathlib import Path
 
@@ -25,7 +29,7 @@ import pandas as pd
 import pytest
 
 from ironbark_opt.errors import SolverError
-from panair.mesh import BodyGeometry, FinGeometry, RocketGeometry, mesh_rocket
+from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
 from panair.solver import build_panels, make_solver
 
 DATA = Path(__file__).parents[1] / "data" / "panair" / "basic_finner"
@@ -64,7 +68,9 @@ def test_supersonic_basic_finner_vs_panair(panels, mach):
 
 
 # (mach, assert CN-alpha within 10 %, assert Cm-alpha within 15 %): measured;
-# the others are printed as NOT MET.  CX0 with MC DRAG's base pressure applied as
+# the others are printed as NOT MET.  (12 spanwise fin panels instead of 6 bring
+# CN-alpha at Mach 1.29 to -8.2 %, but cost the subsonic agreement: see
+# test_supersonic_mesh_convergence.)  CX0 with MC DRAG's base pressure applied as
 # published (incl. its boundary-layer relief) is -11 ... -16 % low: printed NOT MET
 # beyond the issue's 10 %; asserted within 20 % (the old 0.25/M base drag was
 # 14-22 % low).  Cm-alpha at Mach 3.7 / 4.3 (diagnosis, not fixed):
@@ -113,6 +119,32 @@ def test_supersonic_basic_finner_vs_range_data(panels):
         if check_cm:
             assert abs(e_cm) < 0.15
         assert abs(e_cx) < 0.20
+
+
+# Supersonic mesh convergence (the issue's goal: < 2 % between the default and
+# the twice-finer mesh) is NOT MET on the default mesh: +2.6 % CN-alpha and
+# +4.6 % Cm-alpha at Mach 1.6, almost all from the fins.  Measured (session 2)
+# at Mach 1.6: n_span 6 -> 12 gives +2.0 %, n_chord 30 -> 60 +1.9 %, n_theta
+# and the body spacing < 0.5 %; with n_span = 12 the default-vs-twice-finer
+# change is -0.4 % / -0.2 % / +1.3 % (CN-alpha, Cm-alpha, CA0), but the subsonic
+# doublet solution then moves away from PANAIR (Cm-alpha -5.0 ... -5.9 % at
+# Mach 0.4-0.8, the 5 % goal missed) and its own convergence goes from < 2 % to
+# +2.3 % / +3.2 %: subsonic and supersonic solutions want different fin panel
+# aspect ratios, so the default stays at n_span = 6 and this test asserts the
+# measured state (within 6 %) and prints NOT MET.
+@pytest.mark.slow
+def test_supersonic_mesh_convergence(panels):
+    fine = build_panels(mesh_rocket(basic_finner(), symmetric=True,
+                                    options=MeshOptions(refine=2.0)), symmetric=True)
+    a = _derivs(panels, 1.6)
+    b = _derivs(fine, 1.6)
+    d = [y / x - 1 for x, y in zip(a, b)]
+    worst = max(abs(x) for x in d)
+    print(f"\nsupersonic mesh convergence M1.6: {panels.n} -> {fine.n} panels: "
+          f"CNa {a[0]:.3f} -> {b[0]:.3f} ({100 * d[0]:+.2f} %), Cma {a[1]:.3f} -> {b[1]:.3f} "
+          f"({100 * d[1]:+.2f} %), CA0 {a[2]:.4f} -> {b[2]:.4f} ({100 * d[2]:+.2f} %)"
+          f"{'' if worst < 0.02 else ' - NOT MET (goal 2 %)'}")
+    assert worst < 0.06
 
 
 @pytest.mark.slow
