@@ -83,19 +83,21 @@ BAD_AREA_MAX = 0.01
 stagnation (isolated corner singularities at fin tips are tolerated, as
 they are local and negligible in the integrated forces)."""
 BAD_FORCE_MAX = 0.01
-BAD_FORCE_FRACTION = 0.01
-"""With BAD_FORCE_MAX: the tolerated out-of-range panels may contribute at most
-max(BAD_FORCE_MAX, BAD_FORCE_FRACTION x the case's largest force coefficient)
-in force (moments: the same times the moment arm, max |x - xref| / lref).
-Corner singularities grow with the flow angle like the whole solution, so
-the tolerance has a relative part (measured: fin-tip-cap trailing-edge corners
-of the Basic Finner at Mach 1.2, alpha 10 deg carry 0.011 of CN = 3.25).  Measured on
+"""Smallest tolerance on the load of the out-of-range panels, as a force
+coefficient (moments: the same times the moment arm, max |x - xref| / lref);
+see BAD_FORCE_FRACTION for the tolerance actually applied.  Measured on
 the validated Basic Finner cases (Mach 1.29-4.3, alpha <= 4 deg): <= 0.0014 in
 CN and <= 0.0068 in Cm (tolerance 0.05 there).  Cases the area rule alone let
 through: a Mach-cone coincidence on a tip cap (Cp ~ -2e8 on 0.01 % of the
 area, CN ~ 9e5); rounded (blunt) fin leading edges at Mach 1.2-1.3 (Cp below
 vacuum on 0.4 % of the area carrying CA -0.15 at alpha 0 and 22 % of CN at
 alpha 4 deg)."""
+BAD_FORCE_FRACTION = 0.01
+"""The out-of-range panels may carry at most max(BAD_FORCE_MAX,
+BAD_FORCE_FRACTION x the largest force coefficient of the in-range panels).
+Corner singularities grow with the flow angle like the whole solution, so
+the tolerance has a relative part (measured: fin-tip-cap trailing-edge corners
+of the Basic Finner at Mach 1.2, alpha 10 deg carry 0.011 of CN = 3.25)."""
 
 
 def _bad_panels(cp, cp_vac, cp_max):
@@ -337,7 +339,7 @@ class SupersonicSolver:
                     f"{np.nanmin(cpi):.3g} .. {np.nanmax(cpi):.3g}; vacuum {self._cp_vac:.3g}, "
                     f"stagnation {self._cp_max / 1.5:.3g}), carrying {bad_load:.3g} x the "
                     f"tolerated load (force coefficient {BAD_FORCE_MAX} or "
-                    f"{100 * BAD_FORCE_FRACTION:g} % of the case's force)")
+                    f"{100 * BAD_FORCE_FRACTION:g} % of the in-range panels' force)")
             full_cp = np.full(self.panels.n, np.nan)
             full_cp[self._keep] = cp
             full_mu = np.full(self.panels.n, np.nan)

@@ -76,16 +76,22 @@ def test_fin_shadow_separates_the_two_faces():
     assert not sh[nose].any()                                      # the nose sees every fin face
 
 
-def test_singular_panels_carrying_load_are_reported():
-    """A few out-of-range panels are tolerated only while their load is negligible
-    (BAD_FORCE_MAX): one panel with Cp = -1e6 on a tiny area must be reported."""
-    from panair.solver.supersonic import BAD_FORCE_MAX
+@pytest.fixture(scope="module")
+def coarse_finner():
+    """A coarse Basic Finner half model and its Mach 2.5 solver."""
     body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
     fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
     opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
     panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
                           symmetric=True)
-    solver = make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+    return panels, make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+
+
+def test_singular_panels_carrying_load_are_reported(coarse_finner):
+    """A few out-of-range panels are tolerated only while their load is negligible
+    (BAD_FORCE_MAX): one panel with Cp = -1e6 on a tiny area must be reported."""
+    from panair.solver.supersonic import BAD_FORCE_MAX
+    panels, solver = coarse_finner
     res = solver.solve(np.radians([2.0]))[0]
     cp = res.cp[panels.integrate]
     sel = np.ones(cp.size, bool)
@@ -101,18 +107,13 @@ def test_singular_panels_carrying_load_are_reported():
     assert 0.0 < solver._bad_load(bad, sel) < 1.0
 
 
-def test_bad_load_tolerance_grows_with_the_case_force():
+def test_bad_load_tolerance_grows_with_the_case_force(coarse_finner):
     """The tolerated load of out-of-range panels is max(BAD_FORCE_MAX,
     BAD_FORCE_FRACTION x the in-range force): the same corner singularity is
     reported at alpha 1 deg and tolerated at alpha 10 deg, where the in-range
     panels carry enough force for it to be negligible."""
     from panair.solver.supersonic import BAD_FORCE_FRACTION, BAD_FORCE_MAX
-    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
-    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
-    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
-    panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
-                          symmetric=True)
-    solver = make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+    panels, solver = coarse_finner
     lo, hi = solver.solve(np.radians([1.0, 10.0]))
     tol_hi = BAD_FORCE_FRACTION * max(abs(hi.CA), abs(hi.CN))
     assert tol_hi > 1.5 * BAD_FORCE_MAX                     # the relative part governs at 10 deg
