@@ -90,10 +90,10 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     csv_path, json_path = table.save(out)
     md = table.metadata
     result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
-              "mach": mach_v, "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
+              "panels_supersonic": md.get("panels_supersonic", 0), "mach": mach_v, "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
               "reference_length_m": lref, "moment_reference_x_m": 0.0}
     human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
-             f"{md['panels']} panels, includes {', '.join(table.includes)}")
+             f"{md['panels']} panels ({md.get('panels_supersonic', 0)} supersonic), includes {', '.join(table.includes)}")
     emit(result, as_json, human)
 
 

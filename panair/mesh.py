@@ -32,7 +32,7 @@ symmetric about the x-z plane with no fin in that plane (e.g. four fins at
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -157,7 +157,17 @@ class MeshOptions:
     [calibers]; n_chord : chordwise panels per fin side; n_span : spanwise
     panels per fin; wake_length : wake length [body lengths];
     chord_clustering : 0 uniform ... 1 full cosine clustering of the
-    chordwise stations at the fin leading and trailing edges.
+    chordwise stations at the fin leading and trailing edges;
+    supersonic_span_factor : n_span is multiplied by this for supersonic
+    Mach numbers (:meth:`for_mach`).
+
+    Why two fin meshes: the two solvers converge differently in the fin
+    strip width (measured on the Basic Finner, session 2).  The supersonic
+    source solution needs narrow strips: Mach 1.6, n_span 6 -> 12 moves
+    CN-alpha +2.0 % and Cm-alpha +3.3 %, and with 12 strips the default vs
+    twice-finer change is under 1.3 %.  The subsonic doublet solution is
+    best at 6 (vs PANAIR Cm-alpha within 5 % at Mach 0.4-0.8, and within 2 %
+    of its own twice-finer mesh); at 12 it drifts to -5 ... -6 %.
     """
 
     n_theta: int = 32
@@ -168,9 +178,17 @@ class MeshOptions:
     wake_length: float = 5.0
     refine: float = 1.0
     chord_clustering: float = 1.0
+    supersonic_span_factor: float = 2.0
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
+
+    def for_mach(self, mach: float) -> "MeshOptions":
+        """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
+        if mach <= 1.0 or self.supersonic_span_factor == 1.0:
+            return self
+        return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
+                       supersonic_span_factor=1.0)
 
 
 def _chord_stations(n, clustering):

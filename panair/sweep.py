@@ -110,10 +110,18 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     alpha = np.asarray(alpha, float)
     if mach.ndim != 1 or alpha.ndim != 1 or np.any(np.diff(mach) <= 0) or np.any(np.diff(alpha) <= 0):
         raise InputError("mach and alpha must be strictly increasing 1-D grids", field="mach/alpha")
-    nets = mesh_rocket(geometry, symmetric=symmetric, options=options)
-    panels = build_panels(nets, symmetric=symmetric)
     sub = mach[mach <= MACH_SUBSONIC_MAX]
     sup = mach[mach >= MACH_SUPERSONIC_MIN]
+    # one mesh per regime: supersonic Mach numbers get finer fin strips
+    # (MeshOptions.for_mach; the same mesh when the options say so)
+    opt = options or MeshOptions()
+    opt_sup = opt.for_mach(MACH_SUPERSONIC_MIN)
+    nets = mesh_rocket(geometry, symmetric=symmetric, options=opt)
+    nets_sup = nets if opt_sup == opt else mesh_rocket(geometry, symmetric=symmetric,
+                                                       options=opt_sup)
+    panels = build_panels(nets, symmetric=symmetric) if len(sub) or not len(sup) else None
+    panels_sup = (panels if nets_sup is nets and panels is not None
+                  else build_panels(nets_sup, symmetric=symmetric) if len(sup) else None)
     gap = mach[(mach > MACH_SUBSONIC_MAX) & (mach < MACH_SUPERSONIC_MIN)]
     if use_panair and len(sup) and not find_panair():
         raise SolverError("use_panair: no PANAIR executable (set IRONBARK_PANAIR or put "
@@ -124,7 +132,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     builtin = sub if use_panair else np.concatenate([sub, sup])
     external = sup if use_panair else np.zeros(0)
     results: dict[float, np.ndarray] = {}
-    jobs = [(panels, float(m), alpha, sref, lref, xref, pressure_rule) for m in builtin]
+    jobs = [(panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
+             xref, pressure_rule) for m in builtin]
     bar = None
     if progress:
         from tqdm import tqdm
@@ -149,7 +158,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 if bar:
                     bar.update()
         for m in external:
-            results[float(m)] = _panair_one(nets, float(m), alpha, sref, lref, xref, symmetric,
+            results[float(m)] = _panair_one(nets_sup, float(m), alpha, sref, lref, xref, symmetric,
                                             panair_workdir)
             if bar:
                 bar.update()
@@ -164,7 +173,9 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     for n in nets:
         digest.update(n.name.encode())
         digest.update(np.ascontiguousarray(np.round(n.points, 12)).tobytes())
-    info = {"panels": int(panels.n), "wake_panels": int(len(panels.wake_corners)),
+    first = panels if panels is not None else panels_sup
+    info = {"panels": int(first.n), "wake_panels": int(len(first.wake_corners)),
+            "panels_supersonic": int(panels_sup.n) if panels_sup is not None else 0,
             "mach_solved_builtin": [float(m) for m in builtin],
             "mach_solved_panair": [float(m) for m in external],
             "mach_bridged": [float(m) for m in gap],

@@ -46,6 +46,25 @@ def test_sweep_matches_direct_solve_and_parallel():
     assert info["mach_bridged"] == [] and len(info["geometry_hash"]) == 16
 
 
+def test_supersonic_mach_numbers_use_the_finer_fin_strips():
+    """MeshOptions.for_mach: n_span x supersonic_span_factor above Mach 1; the
+    sweep solves each Mach number on its regime's mesh (same numbers as a
+    direct solve on that mesh)."""
+    assert COARSE.for_mach(0.8) is COARSE
+    sup = COARSE.for_mach(1.5)
+    assert sup.n_span == 6 and sup.supersonic_span_factor == 1.0 and sup.for_mach(2.0) is sup
+    assert MeshOptions(n_span=6, supersonic_span_factor=1.0).for_mach(3.0).n_span == 6
+    g = _bf()
+    alpha = np.radians([0.0, 2.0])
+    c, info = sweep_pressure(g, [0.5, 1.6], alpha, sref=np.pi * 0.015**2, lref=0.03, xref=0.15,
+                             options=COARSE, workers=1, progress=False)
+    p_sub = build_panels(mesh_rocket(g, symmetric=True, options=COARSE), symmetric=True)
+    p_sup = build_panels(mesh_rocket(g, symmetric=True, options=sup), symmetric=True)
+    assert info["panels"] == p_sub.n and info["panels_supersonic"] == p_sup.n > p_sub.n
+    direct = make_solver(p_sup, 1.6, sref=np.pi * 0.015**2, lref=0.03, xref=0.15).solve(alpha)
+    np.testing.assert_allclose(c["CN"][1], [r.CN for r in direct], rtol=1e-10, atol=1e-12)
+
+
 def test_unsolvable_mach_is_an_error(monkeypatch):
     monkeypatch.delenv("IRONBARK_PANAIR", raising=False)
     monkeypatch.setenv("PATH", "/nonexistent")
