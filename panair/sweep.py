@@ -21,6 +21,16 @@ CA_base`` where
   McCoy's MC DRAG base pressure above Mach 1, is recorded in the metadata
   as ``base_drag_model``).
 
+Likewise ``CN = CN_pressure + CN_crossflow`` and ``Cm = Cm_pressure +
+Cm_crossflow``: a potential solution has no viscous cross-flow, the
+non-linear body lift that dominates at large angles of attack.  It is the
+viscous cross-flow model of Allen & Perkins (NACA TR 1048, 1951; as
+Jorgensen, NASA TR R-474, 1977, eq. 1: CN = eta Cdc (A_plan/A_ref)
+sin^2 alpha at the body planform's centroid), with eta Cdc = K = 1.1 as in
+the rest of Ironbark (Galejs; :func:`ironbark_opt.aero.barrowman.body_lift`).
+It has zero slope at alpha = 0, so CN-alpha and the static margin are the
+panel solution's.
+
 Supersonic Mach numbers are solved by the built-in supersonic solver, or
 by an external PANAIR when ``use_panair`` is set; Mach numbers between the last
 subsonic and first supersonic solution are faired by
@@ -38,6 +48,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
+from ironbark_opt.aero.barrowman import BODY_LIFT_K, body_lift
 from ironbark_opt.errors import InputError, SolverError
 
 from .a502 import find_panair, run_panair
@@ -45,10 +56,22 @@ from .bridge import transonic_bridge
 from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
 
-__all__ = ["sweep_pressure", "build_table", "SEA_LEVEL_RE_PER_M_PER_MACH"]
+__all__ = ["sweep_pressure", "build_table", "body_planform", "SEA_LEVEL_RE_PER_M_PER_MACH"]
 
 #: rho0 a0 / mu0 of the ICAO standard atmosphere at sea level [1/m per unit Mach]
 SEA_LEVEL_RE_PER_M_PER_MACH = 1.225 * 340.294 / 1.7894e-5
+
+
+def body_planform(body) -> tuple[float, float]:
+    """Side-view (planform) area [m^2] of a body of revolution and its centroid
+    [m aft of the nose tip]: int 2 r dx and int 2 r x dx / area (trapezoids)."""
+    x, r = np.asarray(body.x, float), np.asarray(body.r, float)
+    w = np.diff(x)
+    area = float(np.sum(w * (r[1:] + r[:-1])))
+    # centroid of each trapezoid strip (x0..x1, full widths 2 r0 .. 2 r1)
+    xc = x[:-1] + w * (r[:-1] + 2 * r[1:]) / (3 * np.maximum(r[:-1] + r[1:], 1e-300))
+    moment = float(np.sum(w * (r[1:] + r[:-1]) * xc))
+    return area, moment / area
 
 
 def _solve_one(args):
@@ -188,7 +211,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                 friction=None, base_drag=None, symmetric: bool = True,
                 options: MeshOptions | None = None, workers: int = 2, progress: bool = True,
                 use_panair: bool = False, pressure_rule: str = "second-order",
-                extra_metadata: dict | None = None, executor=None):
+                extra_metadata: dict | None = None, executor=None,
+                crossflow_k: float = BODY_LIFT_K):
     """Sweep -> AeroTable with the viscous and base parts added.
 
     Parameters
@@ -202,14 +226,19 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     symmetric, options, workers, progress, use_panair, pressure_rule, executor
         As in :func:`sweep_pressure`.
     extra_metadata : dict, optional
+    crossflow_k : float [-]
+        Viscous cross-flow coefficient eta Cdc of the body (0: none).
 
     Returns
     -------
-    ironbark_opt.aero.table.AeroTable with CA (total), CA_power_on, CN, Cm,
-    CA_pressure, CA_friction, CA_base.
+    ironbark_opt.aero.table.AeroTable with CA (total), CA_power_on, CN, Cm
+    (totals), CA_pressure, CA_friction, CA_base, CN_pressure, Cm_pressure,
+    CN_crossflow, Cm_crossflow.
     """
     from ironbark_opt import __version__
     from ironbark_opt.aero.table import AeroTable
+    if not (math.isfinite(crossflow_k) and crossflow_k >= 0):
+        raise InputError(f"crossflow_k must be >= 0, got {crossflow_k}", field="crossflow_k")
     coeffs, info = sweep_pressure(geometry, mach, alpha, sref=sref, lref=lref, xref=xref,
                                   symmetric=symmetric, options=options, workers=workers,
                                   progress=progress, use_panair=use_panair,
@@ -229,11 +258,21 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
         ca_b = np.asarray(base_drag.CA_power_off(mach), float)
         ca_b_on = np.asarray(base_drag.CA_power_on(mach), float)
         includes.append("base")
+    cn_x = np.zeros((len(mach), n_a))
+    cm_x = np.zeros((len(mach), n_a))
+    if crossflow_k > 0:
+        a_plan, x_plan = body_planform(geometry.body)
+        cn_a, _ = body_lift(np.asarray(alpha, float), a_plan, x_plan, sref, k=crossflow_k)
+        cn_x = np.ones((len(mach), 1)) * np.asarray(cn_a)[None, :]
+        cm_x = -cn_x * (x_plan - xref) / lref
+        includes.append("crossflow")
     ca_p = coeffs["CA"]
     table = {"CA": ca_p + ca_f[:, None] * ones + ca_b[:, None] * ones,
              "CA_power_on": ca_p + ca_f[:, None] * ones + ca_b_on[:, None] * ones,
-             "CN": coeffs["CN"], "Cm": coeffs["Cm"], "CA_pressure": ca_p,
-             "CA_friction": ca_f[:, None] * ones, "CA_base": ca_b[:, None] * ones}
+             "CN": coeffs["CN"] + cn_x, "Cm": coeffs["Cm"] + cm_x, "CA_pressure": ca_p,
+             "CA_friction": ca_f[:, None] * ones, "CA_base": ca_b[:, None] * ones,
+             "CN_pressure": coeffs["CN"], "Cm_pressure": coeffs["Cm"],
+             "CN_crossflow": cn_x, "Cm_crossflow": cm_x}
     meta = {"generator": "ironbark panair.sweep (built-in panel solver)",
             "version": __version__, "name": geometry.name, "body_axes": "x aft, z up; "
             "alpha = total angle of attack (polar aeroballistic)",
@@ -242,6 +281,9 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
             "friction_reynolds": "sea-level ISA unit Reynolds number at each Mach",
             **({"base_drag_model": getattr(base_drag, "model", type(base_drag).__name__)}
                if base_drag is not None else {}),
+            "crossflow_model": (f"viscous cross-flow, Allen & Perkins (NACA TR 1048): CN = K "
+                                f"(A_plan/A_ref) sin^2 alpha at the planform centroid, K = "
+                                f"{crossflow_k:g}"),
             **info, **(extra_metadata or {})}
     json.dumps(meta)   # must be serialisable
     return AeroTable(mach, np.asarray(alpha, float), table, reference_area=sref,

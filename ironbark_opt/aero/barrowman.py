@@ -197,8 +197,12 @@ def body_tube(x_fore: float, length: float, radius: float) -> Lift:
     return Lift(0.0, _number(x_fore, "x_fore") + 0.5 * _positive(length, "length"), "body")
 
 
+BODY_LIFT_K = 1.1
+"""Cross-flow coefficient K of :func:`body_lift` (Galejs, as [N13] eq. 3.26)."""
+
+
 def body_lift(alpha, planform_area: float, planform_centroid_x: float,
-              reference_area: float, k: float = 1.1):
+              reference_area: float, k: float = BODY_LIFT_K):
     """Non-linear body lift CN = K (A_plan/A_ref) sin^2(alpha) at the planform centroid.
 
     R. Galejs, "Wind instability - what Barrowman left out" (NAR Sentinel

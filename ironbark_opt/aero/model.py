@@ -92,7 +92,7 @@ class AeroModel:
     table: object = None
     friction: FrictionDrag | None = None
     base: BaseDrag | None = None
-    body_lift_k: float = 1.1
+    body_lift_k: float = barrowman.BODY_LIFT_K
     includes: tuple = field(default=())
 
     # -- tabulated geometry sums (speed) ----------------------------------------
@@ -181,7 +181,10 @@ class AeroModel:
         t = self.table
         if t is not None and t.has("CN") and t.has("Cm"):
             a = m.fmax(alpha, _ALPHA_CP)
-            cn, cm = t.symbolic("CN", mach, a), t.symbolic("Cm", mach, a)
+            # the small-angle (linear) CP: without a table's viscous cross-flow part,
+            # which has zero slope at alpha = 0 (panair.sweep.build_table)
+            lin = "_pressure" if t.has("CN_pressure") and t.has("Cm_pressure") else ""
+            cn, cm = t.symbolic("CN" + lin, mach, a), t.symbolic("Cm" + lin, mach, a)
             return self.moment_reference_x - self.reference_length * cm / cn
         s0, s1, _, _, _ = self._sums(mach)
         return s1 / s0

@@ -203,7 +203,7 @@ def _safe_name(name: str) -> str:
 # --------------------------------------------------------------------------- AeroTable
 FORMAT_NAME = "ironbark-aerotable"
 FORMAT_VERSION = 1
-INCLUDES_ALLOWED = ("pressure", "friction", "base")
+INCLUDES_ALLOWED = ("pressure", "friction", "base", "crossflow")
 FRAME_CONVENTION = (
     "body axes, aeroballistic: alpha = total angle of attack; CA axial force positive "
     "rearward (toward the base); CN normal force positive toward the crossflow side; "
@@ -230,7 +230,9 @@ class AeroTable:
     reference_length : float [m]
     moment_reference_x : float [m aft of the nose tip]
     includes : tuple of str
-        Which drag parts ``CA`` contains: any of ``pressure``, ``friction``, ``base``.
+        Which parts the table contains: any of ``pressure``, ``friction``, ``base``
+        (drag parts in ``CA``) and ``crossflow`` (the body's viscous cross-flow
+        lift in ``CN`` and ``Cm``).
     metadata : dict, optional
         Free-form, JSON-serialisable description (generator, version,
         geometry_hash, transonic_bridge, source, ...).

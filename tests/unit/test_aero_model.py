@@ -52,3 +52,28 @@ def test_normal_force_is_restoring_about_a_forward_cg(aero):
     assert cn > 0 and cm < 0
     x_cp = aero.center_of_pressure(0.5, 0.0)
     assert -cm * aero.reference_length / cn == pytest.approx(x_cp, rel=0.02)
+
+
+def test_table_cp_is_the_linear_one_without_the_crossflow_part():
+    """A panel table's CN/Cm include the viscous cross-flow (sin^2 alpha, at
+    the planform centroid); the static-margin CP is read from the pressure
+    part: the same CP as a table without the cross-flow part."""
+    from ironbark_opt.aero.table import AeroTable
+    from ironbark_opt.aero.model import AeroModel
+    kestrel = load_setup(ROOT / "examples/kestrel/kestrel.toml").aero
+    t = kestrel.table
+    assert "crossflow" in t.includes and np.any(t.values("CN_crossflow") > 0)
+    parts = {k: t.values(k) for k in ("CA", "CN_pressure", "Cm_pressure")}
+    bare = AeroTable(t.mach, t.alpha, {**parts, "CN": parts["CN_pressure"],
+                                       "Cm": parts["Cm_pressure"]},
+                     reference_area=t.reference_area, reference_length=t.reference_length,
+                     moment_reference_x=t.moment_reference_x, includes=("pressure",))
+    other = AeroModel(kestrel.reference_area, kestrel.reference_length,
+                      kestrel.moment_reference_x, kestrel.lift, bare)
+    for mach in (0.3, 0.8):
+        assert kestrel.center_of_pressure(mach, 0.0) == pytest.approx(
+            other.center_of_pressure(mach, 0.0), abs=1e-9)
+    # and the cross-flow part does move the 0.5 deg CP forward (toward the planform centroid)
+    cn, cm = kestrel.normal(0.3, np.radians(8.0))
+    cn0, cm0 = other.normal(0.3, np.radians(8.0))
+    assert cn > cn0 and -cm / cn < -cm0 / cn0

@@ -21,8 +21,7 @@ def test_aero_build_and_plot(tmp_path):
     out = json.loads(r.output)
     assert Path(out["table_csv"]).exists() and out["panels"] > 100
     meta = json.loads(Path(out["table_json"]).read_text())
-    assert meta["includes"] == ["pressure", "friction", "base"] or set(meta["includes"]) == {
-        "pressure", "friction", "base"}
+    assert set(meta["includes"]) == {"pressure", "friction", "base", "crossflow"}
     r = runner.invoke(main, ["aero", "plot", out["table_csv"], "--out", str(tmp_path / "p.png")])
     assert r.exit_code == 0, r.output
     assert (tmp_path / "p.png").stat().st_size > 10000

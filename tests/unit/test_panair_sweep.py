@@ -89,11 +89,38 @@ def test_build_table_totals(tmp_path):
     np.testing.assert_allclose(total, parts, rtol=1e-12)
     # base drag part: Niskanen eq. 3.94 on the full base (= Sref here)
     np.testing.assert_allclose(t.values("CA_base")[:, 0], 0.12 + 0.13 * np.array([0.3, 0.6])**2)
-    assert set(t.includes) == {"pressure", "friction", "base"}
+    assert set(t.includes) == {"pressure", "friction", "base", "crossflow"}
+    # CN, Cm = pressure + viscous cross-flow (Allen & Perkins, K = 1.1) at the planform
+    # centroid; Basic Finner body: cone 2.84 cal (triangle) + cylinder 7.16 cal, d = 0.03 m
+    a_plan = (0.5 * 2.84 + 7.16) * 0.03**2
+    x_plan = (0.5 * 2.84 * (2 / 3 * 2.84) + 7.16 * (2.84 + 3.58)) / (0.5 * 2.84 + 7.16) * 0.03
+    cn_x = 1.1 * a_plan / sref * np.sin(np.radians([0.0, 4.0]))**2
+    np.testing.assert_allclose(t.values("CN") - t.values("CN_pressure"), [cn_x, cn_x], atol=1e-12)
+    np.testing.assert_allclose(t.values("Cm") - t.values("Cm_pressure"),
+                               -np.array([cn_x, cn_x]) * (x_plan - 0.15) / 0.03, atol=1e-10)
+    assert t.values("CN_crossflow")[0, 1] / t.values("CN_pressure")[0, 1] > 0.05   # not negligible
     assert t.metadata["panels"] > 0
     assert t.metadata["base_drag_model"] == "mccoy"
     paths = t.save(tmp_path / "bf")
     assert all(p.exists() for p in paths)
+
+
+def test_body_planform_is_exact_for_a_cone_cylinder():
+    from panair.sweep import body_planform
+    area, xc = body_planform(_bf().body)
+    np.testing.assert_allclose(area, (0.5 * 2.84 + 7.16) * 0.03**2, rtol=1e-12)
+    np.testing.assert_allclose(xc / 0.03, (0.5 * 2.84 * (2 / 3 * 2.84) + 7.16 * 6.42)
+                               / (0.5 * 2.84 + 7.16), rtol=1e-12)
+
+
+def test_crossflow_k_is_validated_and_can_be_off():
+    t = build_table(_bf(), [0.3], np.radians([0.0, 4.0]), sref=1e-3, lref=0.03, xref=0.15,
+                    options=COARSE, workers=1, progress=False, crossflow_k=0.0)
+    np.testing.assert_array_equal(t.values("CN"), t.values("CN_pressure"))
+    assert "crossflow" not in t.includes
+    with pytest.raises(InputError, match="crossflow_k"):
+        build_table(_bf(), [0.3], [0.0], sref=1e-3, lref=0.03, xref=0.15, options=COARSE,
+                    workers=1, progress=False, crossflow_k=-1.0)
 
 
 def test_rocket_adapter_example():
