@@ -77,7 +77,8 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
                                             roughness=rough))
     friction = FrictionDrag(comps, sref, rf.aero.re_transition)
     r_base = float(geom.body.r[-1])
-    base = BaseDrag(math.pi * r_base**2, sref)
+    base = BaseDrag(math.pi * r_base**2, sref,
+                    fin_trailing_edge_area=sum(fs.trailing_edge_base_area() for fs in rk.fin_sets()))
     table = build_table(geom, mach_v, alpha_v, sref=sref, lref=lref, xref=0.0,
                         friction=friction, base_drag=base, symmetric=is_symmetric(geom),
                         options=MeshOptions(refine=refine), workers=workers,

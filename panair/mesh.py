@@ -19,8 +19,10 @@ pointing into the flow) and its network kinds:
   wake).  Fin sections: ``double_wedge`` (diamond, or hexagonal with
   bevels), ``square``/``rounded`` (real blunt leading edge; the blunt
   trailing edge is closed by a wedge over the last thickness of chord so
-  the panel method has a Kutta edge — the trailing-edge base drag belongs
-  to the base-drag model), ``airfoil`` (NACA 00xx).  Fin roots are cut on
+  the panel method has a Kutta edge; the wedge's panels carry no force and
+  are left out of the supersonic solve — the separated base behind a blunt
+  trailing edge is the base-drag model's part, ``BaseDrag(...,
+  fin_trailing_edge_area=)``), ``airfoil`` (NACA 00xx).  Fin roots are cut on
   the body surface: two body lines per fin follow the root section, so
   body and fin share their junction points; the body panels between them
   (under the root) stay in the subsonic solve but carry no force.  Only
@@ -117,6 +119,17 @@ class FinGeometry:
             raise InputError("fin tip_chord >= 0 [m] and count >= 1 required", field="fins")
         if self.section not in ("double_wedge", "square", "rounded", "airfoil"):
             raise InputError(f"unknown fin section {self.section!r}", field="fins.section")
+
+    def trailing_edge_closure(self, chord) -> float:
+        """Chordwise length [m] of the wedge that closes a blunt trailing edge
+        (square, rounded, or a hexagon with te_bevel = 0) for the panel
+        method; 0 for a sharp trailing edge.  Its panels carry no force: the
+        separated base behind a blunt edge is the base-drag model's part."""
+        if self.section in ("square", "rounded"):
+            return min(self.thickness, chord / 2)
+        if self.section == "double_wedge" and self.te_bevel == 0.0:
+            return 1e-12 * chord            # a step: only the last chordwise panel
+        return 0.0
 
     def half_thickness(self, xi, chord):
         """Half thickness [m] at ``xi`` [m] aft of the local leading edge."""
@@ -342,6 +355,14 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
     # chordwise parameter clustered at LE and TE
     u = _chord_stations(n_c, opt.chord_clustering)
     lines = []
+    no_force = np.zeros((n_s, 2 * n_c), bool)       # panels closing a blunt trailing edge
+    for j, sj in enumerate(0.5 * (s[:-1] + s[1:])):
+        chord = f.root_chord + sj * (f.tip_chord - f.root_chord)
+        closure = f.trailing_edge_closure(chord)
+        if closure > 0:
+            aft = 0.5 * (u[:-1] + u[1:]) >= 1.0 - closure / chord   # intervals centred in it
+            aft[-1] = True
+            no_force[j] = np.concatenate([aft[::-1], aft])   # lower TE -> LE, then upper LE -> TE
     for sj in s:
         chord = f.root_chord + sj * (f.tip_chord - f.root_chord)
         xle = f.x_root + sj * f.sweep
@@ -356,9 +377,11 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
         # from lower TE over LE to upper TE
         lines.append(np.vstack([lower[::-1], upper[1:]]))
     fin = np.array(lines)
-    net = Network(f"fin{k}", fin, "surface")
+    meta = {"no_force": no_force} if no_force.any() else {}
+    net = Network(f"fin{k}", fin, "surface", meta)
     if _cell_normal(fin, 0, n_c + n_c // 2) @ e_t < 0:      # an upper-side panel
-        net = Network(f"fin{k}", fin[:, ::-1], "surface")
+        net = Network(f"fin{k}", fin[:, ::-1], "surface",
+                      {"no_force": no_force[:, ::-1]} if meta else {})
     out = [net]
     tip = fin[-1]
     if f.tip_chord > 0:

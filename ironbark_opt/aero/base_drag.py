@@ -133,11 +133,19 @@ class BaseDrag:
         (OpenRocket's 0.25/M), see :func:`cd_base`.
     afterbody_calibers : float [-]
         Cylindrical afterbody length / diameter (MC DRAG's boundary-layer relief).
+    fin_trailing_edge_area : float [m^2]
+        Blunt fin trailing edges: sum over fins of thickness x span x
+        :attr:`~ironbark_opt.rocket.fin_sections.FinSection.trailing_edge_base_fraction`.
+        They take the body-base coefficient of Niskanen 2013 eq. 3.94 whatever
+        ``model`` is (as OpenRocket's fin base drag; MC DRAG's boundary-layer
+        relief is for a body base), with the motor burning or not.
     """
 
     def __init__(self, base_area: float, reference_area: float, jet_area: float = 0.0,
-                 model: str = "mccoy", afterbody_calibers: float = AFTERBODY_CALIBERS):
+                 model: str = "mccoy", afterbody_calibers: float = AFTERBODY_CALIBERS,
+                 fin_trailing_edge_area: float = 0.0):
         self.base_area = _check_area(base_area, "base_area")
+        self.fin_trailing_edge_area = _check_area(fin_trailing_edge_area, "fin_trailing_edge_area")
         self.reference_area = _check_area(reference_area, "reference_area")
         self.jet_area = _check_area(jet_area, "jet_area")
         if self.reference_area == 0:
@@ -149,17 +157,26 @@ class BaseDrag:
         self.afterbody_calibers = float(afterbody_calibers)
 
     def __repr__(self) -> str:
-        return (f"BaseDrag(base {self.base_area:g} m^2, jet {self.jet_area:g} m^2, "
-                f"Sref {self.reference_area:g} m^2, {self.model})")
+        return (f"BaseDrag(base {self.base_area:g} m^2, jet {self.jet_area:g} m^2, fin trailing "
+                f"edges {self.fin_trailing_edge_area:g} m^2, Sref {self.reference_area:g} m^2, "
+                f"{self.model})")
+
+    def CA_fin_trailing_edges(self, mach):
+        """Base CA of the blunt fin trailing edges [-]; symbolic-safe. ``mach`` [-]."""
+        if self.fin_trailing_edge_area == 0.0:
+            return 0.0 * mach
+        return cd_base(mach, "niskanen") * (self.fin_trailing_edge_area / self.reference_area)
 
     def CA_power_off(self, mach):
         """Base CA with the motor off [-]; symbolic-safe. ``mach`` [-]."""
-        return cd_base(mach, self.model, self.afterbody_calibers) * (self.base_area / self.reference_area)
+        return (cd_base(mach, self.model, self.afterbody_calibers) * (self.base_area / self.reference_area)
+                + self.CA_fin_trailing_edges(mach))
 
     def CA_power_on(self, mach):
         """Base CA with the motor burning [-]; symbolic-safe. ``mach`` [-].
 
         The jet area is removed from the base area (Niskanen 2013, sec. 3.4.5).
         """
-        return cd_base(mach, self.model, self.afterbody_calibers) * (max(self.base_area - self.jet_area, 0.0)
-                                                                     / self.reference_area)
+        return (cd_base(mach, self.model, self.afterbody_calibers)
+                * (max(self.base_area - self.jet_area, 0.0) / self.reference_area)
+                + self.CA_fin_trailing_edges(mach))

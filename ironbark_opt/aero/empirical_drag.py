@@ -15,8 +15,10 @@ software* (OpenRocket technical documentation, 2013), sec. 3.4:
   1 - 1.785 (M - 0.9) (0.9 < M < 1), 1.214 - 0.502/M^2 + 0.1095/M^4 (M > 1)
   (eq. 3.89); square: 0.85 q_stag/q (eq. 3.87); on the frontal area
   thickness x span x count, times cos^2 of the leading-edge sweep;
-- fin trailing edges (square section): the base-drag coefficient
-  (eq. 3.94) on the same frontal area;
+- fin trailing edges: the base-drag coefficient (eq. 3.94) on the same
+  frontal area for a square (blunt) trailing edge, half of it for a rounded
+  one, none for sharp ones (as OpenRocket's FinSetCalc; see
+  :attr:`~ironbark_opt.rocket.fin_sections.FinSection.trailing_edge_base_fraction`);
 - boattail transitions: the base-drag coefficient times the annulus area
   and a length factor 1 (gamma < 1), (3 - gamma)/2 (1-3), 0 (> 3) with
   gamma = L / (d_fore - d_aft) (eq. 3.88).
@@ -81,8 +83,7 @@ def pressure_ca(rocket, mach) -> np.ndarray:
         sweep = np.arctan2(fins.sweep_length, fins.span)
         le = rounded_le(m) if fins.section.kind in ("rounded", "airfoil") else 0.85 * q
         ca += le * np.cos(sweep) ** 2 * frontal
-        if fins.section.kind == "square":
-            ca += np.asarray(cd_base(m), dtype=float) * frontal
+        ca += np.asarray(cd_base(m), dtype=float) * fins.trailing_edge_base_area() / a_ref
     return ca
 
 

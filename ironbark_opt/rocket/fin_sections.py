@@ -77,6 +77,20 @@ class FinSection:
         object.__setattr__(self, "le_bevel", le)
         object.__setattr__(self, "te_bevel", te)
 
+    @property
+    def trailing_edge_base_fraction(self) -> float:
+        """Share of the trailing edge's frontal area (thickness x span) that
+        carries base drag [-]: 1 for a blunt (square) trailing edge, 1/2 for a
+        rounded one (it recovers part of the pressure), 0 for sharp ones
+        (airfoil, double wedge / hexagonal with a trailing-edge bevel), as
+        OpenRocket's fin base drag (FinSetCalc.calculateComponentBaseCD;
+        Niskanen 2013, sec. 3.4.5)."""
+        if self.kind == "square" or (self.kind == "double_wedge" and self.te_bevel == 0.0):
+            return 1.0
+        if self.kind == "rounded":
+            return 0.5
+        return 0.0
+
     def _bevels(self, chord):
         chord = np.asarray(chord, dtype=float)
         if self.le_bevel is None:

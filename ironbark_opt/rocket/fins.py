@@ -106,6 +106,12 @@ class FinSet(abc.ABC):
         """Both faces of all fins [m^2] (2 x planform x count)."""
         return 2.0 * self.count * self.planform_area()
 
+    def trailing_edge_base_area(self) -> float:
+        """Frontal area of the fins' trailing edges that carries base drag [m^2]:
+        count x thickness x span x the section's
+        :attr:`~ironbark_opt.rocket.fin_sections.FinSection.trailing_edge_base_fraction`."""
+        return self.count * self.thickness * self.span * self.section.trailing_edge_base_fraction
+
     def aspect_ratio(self) -> float:
         """span^2 / planform area of one fin [-]."""
         return self.span ** 2 / self.planform_area()

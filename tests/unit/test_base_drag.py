@@ -101,3 +101,17 @@ def test_drift_float_sx_mx(model):
         got = np.array(f.map(mach.size)(mach))
         np.testing.assert_allclose(got[0], b.CA_power_off(mach), rtol=1e-13)
         np.testing.assert_allclose(got[1], b.CA_power_on(mach), rtol=1e-13)
+
+
+def test_fin_trailing_edges_take_eq_3_94_on_their_frontal_area():
+    """Blunt fin trailing edges: Niskanen eq. 3.94 whatever the body's model, motor on or off."""
+    b = BaseDrag(0.01, 0.0127, jet_area=0.004, fin_trailing_edge_area=0.0022)
+    bare = BaseDrag(0.01, 0.0127, jet_area=0.004)
+    for m in (0.3, 0.9, 1.5, 3.0):
+        fin = float(_niskanen(m)) * 0.0022 / 0.0127
+        assert b.CA_fin_trailing_edges(m) == pytest.approx(fin, rel=1e-12)
+        assert b.CA_power_off(m) - bare.CA_power_off(m) == pytest.approx(fin, rel=1e-12)
+        assert b.CA_power_on(m) - bare.CA_power_on(m) == pytest.approx(fin, rel=1e-12)
+    assert bare.CA_fin_trailing_edges(2.0) == 0.0 and "fin trailing edges 0.0022" in repr(b)
+    with pytest.raises(InputError):
+        BaseDrag(0.01, 0.0127, fin_trailing_edge_area=-1.0)

@@ -136,3 +136,17 @@ def test_bad_sections():
         FinSection(kind="square", le_bevel=0.01, te_bevel=0.01)
     with pytest.raises(InputError, match="both"):
         FinSection(kind="double_wedge", le_bevel=0.01)
+
+
+def test_trailing_edge_base_area_by_section():
+    """count x thickness x span x (1 square or LE-only bevel, 1/2 rounded, 0 sharp)."""
+    full = 4 * T * S
+    assert trapezoid().trailing_edge_base_area() == pytest.approx(full)          # square default
+    assert trapezoid(section=FinSection(kind="rounded")).trailing_edge_base_area() == \
+        pytest.approx(0.5 * full)
+    assert trapezoid(section=FinSection(kind="airfoil")).trailing_edge_base_area() == 0.0
+    assert trapezoid(section=FinSection(kind="double_wedge")).trailing_edge_base_area() == 0.0
+    assert trapezoid(section=FinSection(kind="hexagonal", le_bevel=0.01, te_bevel=0.01)
+                     ).trailing_edge_base_area() == 0.0
+    assert trapezoid(section=FinSection(kind="hexagonal", le_bevel=0.01, te_bevel=0.0)
+                     ).trailing_edge_base_area() == pytest.approx(full)

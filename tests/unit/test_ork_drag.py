@@ -50,3 +50,19 @@ def test_cone_adds_eq_3_81_and_table_is_pressure_only():
     assert table.includes == ("pressure",)
     assert float(table.evaluate("CA", 0.3, 0.0)) == pytest.approx(
         pressure_ca(cone, np.array([0.3]))[0], rel=1e-3)
+
+
+def test_rounded_trailing_edge_takes_half_the_base_drag():
+    """OpenRocket's fin base drag: square trailing edge the full base coefficient
+    (eq. 3.94), rounded half of it, sharp (airfoil) none; leading-edge parts as before."""
+    def fins_ca(kind):
+        r = Rocket("t", [NoseCone(shape="tangent_ogive", length=0.3, radius=0.05),
+                         BodyTube(x=0.3, length=1.0, radius=0.05),
+                         TrapezoidalFins(count=3, x=1.1, thickness=0.004, root_chord=0.2,
+                                         tip_chord=0.1, span=0.1, sweep_length=0.0,
+                                         section=FinSection(kind=kind))])
+        return pressure_ca(r, np.array([0.0]))[0], 0.004 * 0.1 * 3 / r.reference_area()
+    rounded, frontal = fins_ca("rounded")
+    airfoil, _ = fins_ca("airfoil")
+    assert rounded - airfoil == pytest.approx(0.5 * 0.12 * frontal, rel=1e-9)
+    assert airfoil == pytest.approx(0.0, abs=1e-12)      # rounded LE drag is 0 at M = 0
