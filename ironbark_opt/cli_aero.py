@@ -53,29 +53,25 @@ def aero_group():
 @json_option
 @handle_errors
 def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress, as_json):
-    """Build the AeroTable of ROCKET (a rocket TOML file)."""
+    """Build the AeroTable of ROCKET (a rocket TOML or OpenRocket .ork file)."""
     from ironbark_opt.aero.base_drag import BaseDrag
-    from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
-    from ironbark_opt.rocket import load_rocket_toml
+    from ironbark_opt.aero.friction import FrictionDrag
+    from ironbark_opt.aero.model import friction_components
+    from ironbark_opt.vehicle import load_rocket_geometry
     from panair.geometry_adapter import from_rocket, is_symmetric
     from panair.mesh import MeshOptions
     from panair.sweep import build_table
 
     mach_v = _floats(mach, "--mach")
     alpha_v = np.radians(_floats(alpha_deg, "--alpha-deg"))
-    rf = load_rocket_toml(rocket)
-    rk = rf.rocket
+    rk, aero_spec = load_rocket_geometry(rocket)
     geom = from_rocket(rk)
     sref = rk.reference_area()
     lref = 2.0 * rk.reference_radius()
-    rough = rf.aero.surface_roughness
-    comps = [FrictionComponent.body("body", rk.length(), 2.0 * rk.max_radius(),
-                                    roughness=rough)]
-    for fs in rk.fin_sets():
-        comps.append(FrictionComponent.fins(fs.name, 2.0 * fs.count * fs.planform_area(),
-                                            fs.mean_aerodynamic_chord(), fs.thickness,
-                                            roughness=rough))
-    friction = FrictionDrag(comps, sref, rf.aero.re_transition)
+    # the same friction and base-drag parts as a flight without a table
+    # (ironbark_opt.aero.model.build_aero_model), plus blunt fin trailing edges
+    friction = FrictionDrag(friction_components(rk, aero_spec.surface_roughness), sref,
+                            aero_spec.re_transition)
     r_base = float(geom.body.r[-1])
     base = BaseDrag(math.pi * r_base**2, sref,
                     fin_trailing_edge_area=sum(fs.trailing_edge_base_area() for fs in rk.fin_sets()))

@@ -132,8 +132,8 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
 
 
 def load_setup(path, *, config: str | None = None, **kwargs) -> FlightSetup:
-    """Read a rocket file (``.toml``; ``.ork`` when the OpenRocket reader is
-    installed) and assemble its :class:`FlightSetup`.
+    """Read a rocket file (``.toml`` or OpenRocket ``.ork``) and assemble its
+    :class:`FlightSetup`.
 
     Parameters
     ----------
@@ -142,6 +142,39 @@ def load_setup(path, *, config: str | None = None, **kwargs) -> FlightSetup:
         Motor configuration of an OpenRocket file (default: its selected one).
     kwargs
         As in :func:`setup_from_file`.
+    """
+    return setup_from_file(load_rocket_file(path, config=config), **kwargs)
+
+
+def load_rocket_geometry(path):
+    """``(Rocket, AeroSpec)`` of a rocket file (``.toml`` or ``.ork``) without
+    resolving its motor: what an aerodynamic table is built from.
+
+    Parameters
+    ----------
+    path : path-like
+    """
+    path = Path(path)
+    if not path.exists():
+        raise InputError("file not found", source=path)
+    if path.suffix.lower() == ".ork":
+        from ironbark_opt.openrocket.build import load_ork_geometry
+        from ironbark_opt.rocket.specs import AeroSpec
+        return load_ork_geometry(path), AeroSpec()
+    from ironbark_opt.rocket.toml_io import load_rocket_toml
+    rf = load_rocket_toml(path)
+    return rf.rocket, rf.aero
+
+
+def load_rocket_file(path, *, config: str | None = None):
+    """A rocket file (``.toml``, or OpenRocket ``.ork`` by its suffix) as a
+    :class:`~ironbark_opt.rocket.toml_io.RocketFile`.
+
+    Parameters
+    ----------
+    path : path-like
+    config : str, optional
+        Motor configuration of an OpenRocket file (default: its selected one).
     """
     path = Path(path)
     if not path.exists():
@@ -158,4 +191,4 @@ def load_setup(path, *, config: str | None = None, **kwargs) -> FlightSetup:
             raise InputError("--config applies to OpenRocket files only", source=path, field="config")
         from ironbark_opt.rocket.toml_io import load_rocket_toml
         rf = load_rocket_toml(path)
-    return setup_from_file(rf, **kwargs)
+    return rf

@@ -279,7 +279,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
             "transonic_bridge": bool(info["mach_bridged"]),
             "transonic_bridge_model": "monotone cubic Hermite (Fritsch & Carlson 1980)",
             "friction_reynolds": "sea-level ISA unit Reynolds number at each Mach",
-            **({"base_drag_model": getattr(base_drag, "model", type(base_drag).__name__)}
+            **({"base_drag_model": getattr(base_drag, "model", type(base_drag).__name__),
+                "base_jet_area_m2": float(getattr(base_drag, "jet_area", 0.0))}
                if base_drag is not None else {}),
             "crossflow_model": (f"viscous cross-flow, Allen & Perkins (NACA TR 1048): CN = K "
                                 f"(A_plan/A_ref) sin^2 alpha at the planform centroid, K = "

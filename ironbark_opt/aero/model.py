@@ -83,6 +83,9 @@ class AeroModel:
         Added to CA unless the table includes friction.
     base : BaseDrag or None
         Added to CA unless the table includes base drag.
+    jet_relief : BaseDrag or None
+        Base drag of the exhaust's share of the base, taken off CA while the
+        motor burns when the table's base drag was built without a jet.
     """
 
     reference_area: float
@@ -94,6 +97,7 @@ class AeroModel:
     base: BaseDrag | None = None
     body_lift_k: float = barrowman.BODY_LIFT_K
     includes: tuple = field(default=())
+    jet_relief: BaseDrag | None = None
 
     # -- tabulated geometry sums (speed) ----------------------------------------
     def _sums_exact(self, mach):
@@ -148,6 +152,8 @@ class AeroModel:
             ca_coef = ca_coef + self.friction.CA(mach, reynolds_per_m)
         if self.base is not None and "base" not in self.includes:
             ca_coef = ca_coef + (self.base.CA_power_on(mach) if power_on else self.base.CA_power_off(mach))
+        if power_on and self.jet_relief is not None:
+            ca_coef = ca_coef - self.jet_relief.CA_power_off(mach)
         return ca_coef
 
     # -- normal force and moment -------------------------------------------------
@@ -282,8 +288,13 @@ def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re
     if "friction" not in includes:
         friction = FrictionDrag(friction_components(rocket, surface_roughness), aref, re_transition)
     base = None
+    jet_relief = None
     if "base" not in includes:
         r_base = float(rocket.radius_at(rocket.length()))
         base = BaseDrag(math.pi * r_base ** 2, aref, jet_area)
+    elif jet_area > 0 and table.metadata.get("base_jet_area_m2") == 0.0:
+        # a panel table's base drag was built without a jet (the motor is not part of the
+        # geometry): the exhaust's share of the base is taken off while the motor burns
+        jet_relief = BaseDrag(jet_area, aref, model=table.metadata.get("base_drag_model", "mccoy"))
     return AeroModel(aref, dref, float(table.moment_reference_x), lift_geometry(rocket), table,
-                     friction, base, includes=includes)
+                     friction, base, includes=includes, jet_relief=jet_relief)

@@ -158,6 +158,21 @@ def rocket_file(doc: OrkDocument, config: str | None = None):
     return RocketFile(rocket, spec, aero, launch, recovery(doc, cfg.config_id), BallastSpec(), doc.path)
 
 
+def load_ork_geometry(path) -> Rocket:
+    """The rocket's geometry and mass build-up from an .ork file, without a motor
+    (what an aerodynamic table needs; numeric-only).
+
+    Raises InputError for a damaged file or an unsupported component, and for
+    more than one stage (the table would mesh the stack)."""
+    doc = read_ork(path)
+    if len(doc.rocket.stages) > 1:
+        s = doc.rocket.stages[1]
+        raise InputError(f"multi-stage rockets are not supported yet (stage '{s.name}'); "
+                         "remove the lower stages to build the sustainer's table",
+                         source=doc.path, field=s.path)
+    return geometry(doc)
+
+
 def load_ork(path, *, config: str | None = None):
     """Read an .ork file and return the RocketFile of one motor configuration (numeric-only).
 

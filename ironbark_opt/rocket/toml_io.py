@@ -220,6 +220,9 @@ def load_rocket_toml(path) -> RocketFile:
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise InputError(f"cannot read the rocket file: {exc.strerror}", source=path) from None
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not a UTF-8 text file (byte {exc.start}): a rocket TOML file is expected "
+                         "(OpenRocket files need the .ork suffix)", source=path) from None
     return loads_rocket_toml(text, path)
 
 

@@ -77,3 +77,25 @@ def test_table_cp_is_the_linear_one_without_the_crossflow_part():
     cn, cm = kestrel.normal(0.3, np.radians(8.0))
     cn0, cm0 = other.normal(0.3, np.radians(8.0))
     assert cn > cn0 and -cm / cn < -cm0 / cn0
+
+
+def test_panel_table_flight_takes_the_jet_off_the_base_while_burning():
+    """A panel table's base drag is built without a jet; with the motor's nozzle
+    exit area known, the burning rocket's CA loses cd_base(M) x A_jet / Sref
+    (the same rule as without a table, Niskanen 2013 sec. 3.4.5)."""
+    from ironbark_opt.aero.base_drag import cd_base
+    from ironbark_opt.aero.model import build_aero_model
+    from ironbark_opt.aero.table import AeroTable
+    from ironbark_opt.vehicle import load_rocket_geometry
+    rocket, _ = load_rocket_geometry(ROOT / "examples/kestrel/kestrel.toml")
+    table = AeroTable.load(ROOT / "tables/Kestrel.csv")
+    assert table.metadata["base_jet_area_m2"] == 0.0
+    jet = 7e-4
+    with_jet = build_aero_model(rocket, table=table, jet_area=jet)
+    without = build_aero_model(rocket, table=table)
+    for mach in (0.3, 0.8, 1.3):
+        on = with_jet.axial(mach, 0.0, 1e7, power_on=True)
+        off = with_jet.axial(mach, 0.0, 1e7, power_on=False)
+        assert off == pytest.approx(without.axial(mach, 0.0, 1e7, power_on=True), rel=1e-12)
+        assert off - on == pytest.approx(cd_base(mach, "mccoy") * jet / rocket.reference_area(),
+                                         rel=1e-9)

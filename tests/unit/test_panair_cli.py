@@ -34,3 +34,26 @@ def test_aero_build_errors(tmp_path):
     if TOML.exists():
         r = runner.invoke(main, ["aero", "build", str(TOML), "--mach", "0.5,0.3"])
         assert r.exit_code == 2 and "--mach" in r.output
+
+
+def test_aero_build_from_an_openrocket_file(tmp_path):
+    """An .ork builds its table from the geometry alone (no motor file needed)."""
+    ork = Path(__file__).parents[1] / "data" / "ork" / "A simple model rocket.ork"
+    r = CliRunner().invoke(main, ["aero", "build", str(ork), "--mach", "0.3", "--alpha-deg",
+                                  "0,4", "--refine", "0.5", "--workers", "1", "--out",
+                                  str(tmp_path / "simple"), "--json"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.output)
+    meta = json.loads(Path(out["table_json"]).read_text())
+    assert meta["rocket_file"].endswith(".ork") and out["panels"] > 100
+    from ironbark_opt.aero.table import AeroTable
+    t = AeroTable.load(out["table_csv"])
+    # a stable finned rocket: CN > 0 and a nose-down moment about the nose tip at 4 deg
+    assert t.values("CN")[0, 1] > 0 and t.values("Cm")[0, 1] < 0 and t.values("CA")[0, 0] > 0
+
+
+def test_aero_build_rejects_a_binary_rocket_file(tmp_path):
+    bad = tmp_path / "rocket.toml"
+    bad.write_bytes(b"PK\x03\x04\x92\xff binary")
+    r = CliRunner().invoke(main, ["aero", "build", str(bad), "--json"])
+    assert r.exit_code == 2 and "not a UTF-8 text file" in r.output and "Traceback" not in r.output

@@ -76,7 +76,9 @@ def test_supersonic_basic_finner_vs_panair(panels, mach):
 # the linear-to-tangent-cone blend there (B tan delta = 0.45).  CX0 with MC DRAG's base pressure applied as
 # published (incl. its boundary-layer relief) is -11 ... -16 % low: printed NOT MET
 # beyond the 10 %; asserted within 20 % (the old 0.25/M base drag was
-# 14-22 % low).  Cm-alpha at Mach 3.7 / 4.3 (diagnosis, not fixed):
+# 14-22 % low).  Without the relief factor 1 + 0.09 M^2 it would be -3.9 ... -8.6 %
+# (printed too): the shortfall is the base pressure's, or an unmodelled blunt fin
+# trailing edge (fin section not given by the range report).  Cm-alpha at Mach 3.7 / 4.3 (diagnosis, not fixed):
 # the nose is not the cause - with the tangent-cone pressures the cone carries
 # CN-alpha 2.2 /rad (slender-body theory: 2; linear theory gives 6.7
 # and 11.8), and the total CN-alpha is right (-3 / +2 %), so the missing nose-up
@@ -103,6 +105,10 @@ def test_supersonic_basic_finner_vs_range_data(panels):
     friction = FrictionDrag([FrictionComponent.body("body", 10 * d, d),
                              FrictionComponent.fins("fins", 2 * 4 * d * d, d, 0.08 * d)], sref)
     base = BaseDrag(sref, sref, afterbody_calibers=7.16)   # cylinder 7.16 cal behind the cone
+    # the same without MC DRAG's boundary-layer relief factor, printed for the record
+    # (measured: CX0 -3.9 ... -8.6 %; whether the relief applies to a base with
+    # fins flush to it is the open question, see RANGE_CASES)
+    no_relief = BaseDrag(sref, sref, afterbody_calibers=0.0)
     for mach, check_cn, check_cm in RANGE_CASES:
         cna, cma, ca0 = _derivs(panels, mach)
         r = rng.loc[mach]
@@ -112,11 +118,13 @@ def test_supersonic_basic_finner_vs_range_data(panels):
         ca_b = float(base.CA_power_off(mach))
         cx0 = ca0 + ca_f + ca_b
         e_cx = cx0 / r["CX0"] - 1
+        e_cx_nr = (cx0 - ca_b + float(no_relief.CA_power_off(mach))) / r["CX0"] - 1
         print(f"\nBasic Finner M{mach} vs range: CNa {cna:.2f} / {r['CNa_per_rad']:.2f} "
               f"({100 * e_cn:+.1f} %{'' if check_cn else ', NOT MET'}), Cma {cma:.2f} / "
               f"{r['CMa_per_rad']:.2f} ({100 * e_cm:+.1f} %{'' if check_cm else ', NOT MET'}), "
               f"CX0 {ca0:.3f} + {ca_f:.3f} + {ca_b:.3f} = {cx0:.3f} / {r['CX0']:.3f} "
-              f"({100 * e_cx:+.1f} %{'' if abs(e_cx) < 0.10 else ', NOT MET'})")
+              f"({100 * e_cx:+.1f} %{'' if abs(e_cx) < 0.10 else ', NOT MET'}; without MC DRAG's "
+              f"boundary-layer relief {100 * e_cx_nr:+.1f} %)")
         if check_cn:
             assert abs(e_cn) < 0.10
         if check_cm:
