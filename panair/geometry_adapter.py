@@ -1,7 +1,8 @@
 """``ironbark_opt.rocket.Rocket`` -> :class:`panair.mesh.RocketGeometry`.
 
 Numeric-only.  Trapezoidal fin sets are meshed as they are; elliptical
-and free-form fins are not meshed yet (InputError).  Fin cant is not
+and free-form fins by their outline (leading edge and chord along the
+span, :meth:`ironbark_opt.rocket.fins.FinSet.outline`).  Fin cant is not
 meshed: it changes roll moments, not CA/CN/Cm to first order, and the
 table has no roll coefficients.
 """
@@ -32,19 +33,26 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
     x, r = rocket.body_profile(n_profile)
     fins = []
     for k, fs in enumerate(rocket.fin_sets()):
-        kind = type(fs).__name__
-        if kind != "TrapezoidalFins":
-            raise InputError(f"fin set '{fs.name}' is {kind}: only trapezoidal fins are meshed "
-                             "by the panel mesher so far", field=f"fin_sets[{k}]")
+        outline = None
+        if type(fs).__name__ != "TrapezoidalFins":           # elliptical, free-form
+            frac, le, chord = fs.outline()
+            if chord[0] <= 0:
+                raise InputError(f"fin set '{fs.name}': the planform has no root chord",
+                                 field=f"fin_sets[{k}]")
+            outline = (frac, le, chord)
         sec = fs.section
         section = {"square": "square", "rounded": "rounded", "airfoil": "airfoil",
                    "double_wedge": "double_wedge"}[sec.kind]
         # roll: with an even count no fin lies in the x-z plane (a half model is
         # possible); an odd count is meshed with a fin on top (full model)
         roll = np.pi / fs.count if fs.count % 2 == 0 else 0.0
-        fins.append(FinGeometry(int(fs.count), fs.root_chord, fs.tip_chord, fs.span,
-                                fs.sweep_length, fs.x, fs.thickness, roll=roll, section=section,
-                                le_bevel=sec.le_bevel, te_bevel=sec.te_bevel))
+        if outline is None:
+            root, tip, sweep = fs.root_chord, fs.tip_chord, fs.sweep_length
+        else:
+            root, tip, sweep = outline[2][0], outline[2][-1], outline[1][-1]
+        fins.append(FinGeometry(int(fs.count), root, tip, fs.span, sweep, fs.x, fs.thickness,
+                                roll=roll, section=section, le_bevel=sec.le_bevel,
+                                te_bevel=sec.te_bevel, outline=outline))
     return RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name)
 
 

@@ -25,8 +25,9 @@ pointing into the flow) and its network kinds:
   fin_trailing_edge_area=)``), ``airfoil`` (NACA 00xx).  Fin roots are cut on
   the body surface: two body lines per fin follow the root section, so
   body and fin share their junction points; the body panels between them
-  (under the root) stay in the subsonic solve but carry no force.  Only
-  trapezoidal planforms; fin cant is not meshed.
+  (under the root) stay in the subsonic solve but carry no force.  Any
+  planform with a straight root: trapezoidal, or an outline (elliptical,
+  free-form: leading edge and chord along the span); fin cant is not meshed.
 
 Half model (``symmetric=True``): y >= 0 only, for configurations
 symmetric about the x-z plane with no fin in that plane (e.g. four fins at
@@ -34,7 +35,7 @@ symmetric about the x-z plane with no fin in that plane (e.g. four fins at
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -80,7 +81,7 @@ class BodyGeometry:
 
 @dataclass(frozen=True)
 class FinGeometry:
-    """A set of identical trapezoidal fins, equally spaced in roll.
+    """A set of identical fins (trapezoidal, or any outline), equally spaced in roll.
 
     Parameters
     ----------
@@ -97,6 +98,11 @@ class FinGeometry:
         ``double_wedge``, ``square``, ``rounded`` or ``airfoil``.
     le_bevel, te_bevel : float [m] or None
         Bevel lengths of a hexagonal section (None: sharp diamond).
+    outline : (span_fraction, le_offset, chord) arrays or None
+        A non-trapezoidal planform (elliptical, free-form): the leading-edge
+        offset aft of the root leading edge [m] and the chord [m] at
+        increasing span fractions from 0 (root) to 1 (tip), linearly
+        interpolated.  None: the trapezoid of root_chord, tip_chord, sweep.
     """
 
     count: int
@@ -110,6 +116,7 @@ class FinGeometry:
     section: str = "double_wedge"
     le_bevel: float | None = None
     te_bevel: float | None = None
+    outline: tuple | None = field(default=None, compare=False)
 
     def __post_init__(self):
         for name in ("root_chord", "span", "thickness"):
@@ -119,6 +126,30 @@ class FinGeometry:
             raise InputError("fin tip_chord >= 0 [m] and count >= 1 required", field="fins")
         if self.section not in ("double_wedge", "square", "rounded", "airfoil"):
             raise InputError(f"unknown fin section {self.section!r}", field="fins.section")
+        if self.outline is not None:
+            fr, le, ch = (np.asarray(a, float) for a in self.outline)
+            if not (fr.ndim == 1 and fr.shape == le.shape == ch.shape and len(fr) >= 2
+                    and fr[0] == 0.0 and fr[-1] == 1.0 and np.all(np.diff(fr) > 0)
+                    and np.all(ch >= 0) and np.all(np.isfinite(le))):
+                raise InputError("fin outline: span fractions 0 ... 1 increasing, chords >= 0",
+                                 field="fins.outline")
+            if abs(ch[0] - self.root_chord) > 1e-9 * self.root_chord or abs(le[0]) > 1e-12 \
+                    or abs(ch[-1] - self.tip_chord) > 1e-9 * self.root_chord:
+                raise InputError("fin outline must start at the root chord (offset 0) and end "
+                                 "at the tip chord", field="fins.outline")
+            object.__setattr__(self, "outline", (fr, le, ch))
+
+    def chord_at(self, fraction):
+        """Chord [m] at span ``fraction`` (0 root ... 1 tip)."""
+        if self.outline is None:
+            return self.root_chord + fraction * (self.tip_chord - self.root_chord)
+        return np.interp(fraction, self.outline[0], self.outline[2])
+
+    def le_at(self, fraction):
+        """Leading edge [m] aft of the root leading edge at span ``fraction``."""
+        if self.outline is None:
+            return fraction * self.sweep
+        return np.interp(fraction, self.outline[0], self.outline[1])
 
     def trailing_edge_closure(self, chord) -> float:
         """Chordwise length [m] of the wedge that closes a blunt trailing edge
@@ -352,24 +383,24 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
     n_c = opt.scaled("n_chord")
     n_s = opt.scaled("n_span")
     s = np.linspace(0.0, 1.0, n_s + 1)
+    if f.outline is not None:        # curved outlines: strips narrowing toward the tip
+        s = np.sin(0.5 * np.pi * s)
     # chordwise parameter clustered at LE and TE
     u = _chord_stations(n_c, opt.chord_clustering)
     lines = []
     no_force = np.zeros((n_s, 2 * n_c), bool)       # panels closing a blunt trailing edge
     for j, sj in enumerate(0.5 * (s[:-1] + s[1:])):
-        chord = f.root_chord + sj * (f.tip_chord - f.root_chord)
+        chord = f.chord_at(sj)
         closure = f.trailing_edge_closure(chord)
-        if closure > 0:
+        if closure > 0 and chord > 0:
             aft = 0.5 * (u[:-1] + u[1:]) >= 1.0 - closure / chord   # intervals centred in it
             aft[-1] = True
             no_force[j] = np.concatenate([aft[::-1], aft])   # lower TE -> LE, then upper LE -> TE
     for sj in s:
-        chord = f.root_chord + sj * (f.tip_chord - f.root_chord)
-        xle = f.x_root + sj * f.sweep
+        chord = f.chord_at(sj)
+        xle = f.x_root + f.le_at(sj)
         xi = u * chord
-        h = f.half_thickness(xi, chord)
-        if chord <= 0:
-            h = np.zeros_like(xi)
+        h = f.half_thickness(xi, chord) if chord > 0 else np.zeros_like(xi)   # pointed tip
         r_root = body.radius_at(xle + xi)
         rad = np.sqrt(np.maximum(r_root**2 - h**2, 0.0)) + sj * f.span
         lower = (xle + xi)[:, None] * np.array([1.0, 0, 0]) + rad[:, None] * e_r - h[:, None] * e_t

@@ -106,6 +106,29 @@ class FinSet(abc.ABC):
         """Both faces of all fins [m^2] (2 x planform x count)."""
         return 2.0 * self.count * self.planform_area()
 
+    def outline(self, n: int = 128):
+        """Leading edge and chord along the span, from the planform polygon.
+
+        Returns ``(fraction, xi_le, chord)``: ``n + 1`` span fractions from 0
+        (root) to 1 (tip) with the leading edge [m] aft of the root leading
+        edge and the chord [m] (first to last crossing of the outline at that
+        height; notches are filled, as for the MAC).  Numeric-only.
+        """
+        pts = np.asarray(self.planform_points(257), float)     # odd: a curved tip's apex
+        span = float(pts[:, 1].max())
+        frac = np.linspace(0.0, 1.0, int(n) + 1)
+        le, te = np.empty_like(frac), np.empty_like(frac)
+        p, q = pts, np.roll(pts, -1, axis=0)
+        for k, y in enumerate(frac * span):
+            lo, hi = np.minimum(p[:, 1], q[:, 1]), np.maximum(p[:, 1], q[:, 1])
+            on = (lo <= y + 1e-12 * span) & (hi >= y - 1e-12 * span)
+            dy = q[on, 1] - p[on, 1]
+            flat = np.abs(dy) <= 1e-12 * span
+            t = np.where(flat, 0.0, (y - p[on, 1]) / np.where(flat, 1.0, dy))
+            xs = np.concatenate([p[on, 0] + t * (q[on, 0] - p[on, 0]), q[on][flat, 0]])
+            le[k], te[k] = xs.min(), xs.max()
+        return frac, le - le[0], te - le
+
     def trailing_edge_base_area(self) -> float:
         """Frontal area of the fins' trailing edges that carries base drag [m^2]:
         count x thickness x span x the section's

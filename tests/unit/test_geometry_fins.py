@@ -150,3 +150,18 @@ def test_trailing_edge_base_area_by_section():
                      ).trailing_edge_base_area() == 0.0
     assert trapezoid(section=FinSection(kind="hexagonal", le_bevel=0.01, te_bevel=0.0)
                      ).trailing_edge_base_area() == pytest.approx(full)
+
+
+def test_outline_of_elliptical_and_trapezoidal_fins():
+    """Leading edge and chord along the span from the planform polygon: exact for a
+    trapezoid, the half ellipse's c_r sqrt(1 - f^2) centred on the root mid-chord
+    (64-point polygon: within 1e-3 c_r)."""
+    frac, le, chord = trapezoid().outline(20)
+    np.testing.assert_allclose(chord, CR + frac * (CT - CR), atol=1e-12)
+    np.testing.assert_allclose(le, frac * SWEEP, atol=1e-12)
+    e = EllipticalFins(count=3, x=1.0, thickness=T, root_chord=0.2, span=0.1)
+    frac, le, chord = e.outline(50)
+    exact = 0.2 * np.sqrt(1 - frac**2)
+    assert frac[0] == 0 and frac[-1] == 1 and chord[-1] == pytest.approx(0, abs=1e-12)
+    np.testing.assert_allclose(chord, exact, atol=1e-3 * 0.2)
+    np.testing.assert_allclose(le, 0.5 * (0.2 - chord), atol=1e-12)

@@ -126,3 +126,63 @@ def test_blunt_trailing_edge_closure_carries_no_force(section, kw, expect):
         assert mask.sum(axis=1).tolist() == [2, 2, 2] and np.all(xc[mask] > xc[~mask].max() - 1e-9)
     panels = build_panels(nets, symmetric=True)
     assert (~panels.integrate[panels.network == 3]).sum() == mask.sum()
+
+
+def test_elliptical_and_freeform_fins_are_meshed():
+    """Fins meshed from their outline: the meshed elliptical fin's planform (its
+    leading- and trailing-edge points in the fin plane) has the half ellipse's
+    area pi c_r s / 4 (within 1 %: polygonal strips); a free-form copy of a
+    trapezoid meshes like the trapezoid (CN-alpha at Mach 0.5 within 2 %: other
+    spanwise stations)."""
+    from ironbark_opt.rocket import (BodyTube, EllipticalFins, FreeformFins, NoseCone, Rocket,
+                                     TrapezoidalFins)
+    from ironbark_opt.rocket.fin_sections import FinSection
+    from panair.geometry_adapter import from_rocket
+    from panair.solver import make_solver
+    sec = FinSection(kind="double_wedge")
+    body = [NoseCone(shape="tangent_ogive", length=0.3, radius=0.05),
+            BodyTube(x=0.3, length=1.0, radius=0.05)]
+    opt = MeshOptions(n_theta=32, n_nose=8, body_spacing=1.0, n_chord=12, n_span=8)
+
+    ell = EllipticalFins(count=4, x=1.1, thickness=0.004, root_chord=0.16, span=0.1, section=sec)
+    nets = mesh_rocket(from_rocket(Rocket("t", body + [ell])), symmetric=True, options=opt)
+    fin = next(n for n in nets if n.name == "fin0").points
+    n_c = (fin.shape[1] - 1) // 2
+    le, te = fin[:, n_c], 0.5 * (fin[:, 0] + fin[:, -1])
+    rad = lambda q: np.hypot(q[:, 1], q[:, 2]) - 0.05                    # noqa: E731
+    poly = np.vstack([np.column_stack([le[:, 0], rad(le)]),
+                      np.column_stack([te[::-1, 0], rad(te[::-1])])])
+    x, y = poly[:, 0], poly[:, 1]
+    area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    assert rad(le)[-1] == pytest.approx(0.1, abs=1e-9)
+    print(f"\nmeshed elliptical planform {area:.6g} vs pi c s / 4 = {ell.planform_area():.6g}")
+    assert area == pytest.approx(ell.planform_area(), rel=0.01)
+    trap = TrapezoidalFins(count=4, x=1.1, thickness=0.004, root_chord=0.16, tip_chord=0.08,
+                           span=0.1, sweep_length=0.04, section=sec)
+    free = FreeformFins(count=4, x=1.1, thickness=0.004, section=sec,
+                        points=[(0, 0), (0.04, 0.1), (0.12, 0.1), (0.16, 0)])
+    cna = []
+    for fins in ([trap], [free]):
+        p = build_panels(mesh_rocket(from_rocket(Rocket("t", body + fins)), symmetric=True,
+                                     options=opt), symmetric=True)
+        r = make_solver(p, 0.5, sref=np.pi * 0.05**2, lref=0.1).solve(np.radians([0.0, 2.0]))
+        cna.append((r[1].CN - r[0].CN) / np.radians(2.0))
+    assert cna[1] == pytest.approx(cna[0], rel=0.02)
+
+
+def test_freeform_fins_with_a_pointed_tip_mesh_cleanly():
+    """OpenRocket free-form fins ending in a point (chord 0 at the tip), square
+    section: meshed without NumPy warnings, tip line collapsed to the point."""
+    import warnings
+    from pathlib import Path
+    from ironbark_opt.vehicle import load_rocket_geometry
+    from panair.geometry_adapter import from_rocket
+    ork = Path(__file__).parents[1] / "data" / "ork" / "Base drag hack (short-wide).ork"
+    rocket, _ = load_rocket_geometry(ork)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        nets = mesh_rocket(from_rocket(rocket), symmetric=True,
+                           options=MeshOptions(n_theta=16, n_nose=6, n_chord=8, n_span=4))
+    fin = next(n for n in nets if n.name == "fin0").points
+    assert np.ptp(fin[-1], axis=0).max() < 1e-12            # the tip is a point
+    assert not any(n.name.startswith("cap") for n in nets)  # so no tip cap
