@@ -103,6 +103,9 @@ class FinGeometry:
         offset aft of the root leading edge [m] and the chord [m] at
         increasing span fractions from 0 (root) to 1 (tip), linearly
         interpolated.  None: the trapezoid of root_chord, tip_chord, sweep.
+    blunt_leading_edge : bool
+        Set by :meth:`sharpened`: the leading-edge bevel stands in for a
+        blunt edge (its panels carry no axial force).
     """
 
     count: int
@@ -117,6 +120,7 @@ class FinGeometry:
     le_bevel: float | None = None
     te_bevel: float | None = None
     outline: tuple | None = field(default=None, compare=False)
+    blunt_leading_edge: bool = False
 
     def __post_init__(self):
         for name in ("root_chord", "span", "thickness"):
@@ -162,15 +166,31 @@ class FinGeometry:
             return 1e-12 * chord            # a step: only the last chordwise panel
         return 0.0
 
+    def bevels(self, chord) -> tuple[float, float]:
+        """Leading- and trailing-edge bevel lengths [m] of a double wedge at ``chord``
+        [m] (None: the ridge at mid-chord; scaled down to fit a short chord)."""
+        le = chord / 2 if self.le_bevel is None else self.le_bevel
+        te = chord / 2 if self.te_bevel is None else self.te_bevel
+        k = min(1.0, chord / (le + te)) if le + te > 0 else 1.0
+        return le * k, te * k
+
+    def sharpened(self, wedge: float) -> "FinGeometry":
+        """A blunt (square, rounded) leading edge replaced by a wedge ``wedge``
+        fin thicknesses long (the section becomes a hexagon with a square
+        trailing edge); other sections unchanged.  The wedge's panels carry no
+        axial force: linear supersonic theory cannot solve a blunt edge (it is
+        superinclined), so its drag is modelled separately (panair.sweep)."""
+        if self.section not in ("square", "rounded") or wedge <= 0:
+            return self
+        return replace(self, section="double_wedge", le_bevel=wedge * self.thickness,
+                       te_bevel=0.0, blunt_leading_edge=True)
+
     def half_thickness(self, xi, chord):
         """Half thickness [m] at ``xi`` [m] aft of the local leading edge."""
         t, c = self.thickness, chord
         s = np.clip(xi / max(c, 1e-300), 0.0, 1.0)
         if self.section == "double_wedge":
-            le = c / 2 if self.le_bevel is None else self.le_bevel
-            te = c / 2 if self.te_bevel is None else self.te_bevel
-            k = min(1.0, c / (le + te)) if le + te > 0 else 1.0
-            le, te = le * k, te * k
+            le, te = self.bevels(c)
             h = np.minimum(np.minimum(xi / max(le, 1e-300), (c - xi) / max(te, 1e-300)), 1.0)
             return 0.5 * t * np.clip(h, 0.0, 1.0)
         if self.section == "airfoil":   # NACA 00xx, Abbott & von Doenhoff (1959) eq. 6.2, closed TE
@@ -192,6 +212,12 @@ class RocketGeometry:
     name: str = "rocket"
 
 
+SUPERSONIC_LE_WEDGE = 3.0
+"""Length of the wedge standing in for a blunt fin leading edge in supersonic
+meshes [fin thicknesses]: half-angle atan(1/6) = 9.5 deg, subinclined (the
+wetted panels shallower than the Mach cone) up to Mach 6."""
+
+
 @dataclass(frozen=True)
 class MeshOptions:
     """Mesh density.  ``refine`` multiplies every count (2 = twice finer).
@@ -203,7 +229,11 @@ class MeshOptions:
     chord_clustering : 0 uniform ... 1 full cosine clustering of the
     chordwise stations at the fin leading and trailing edges;
     supersonic_span_factor : n_span is multiplied by this for supersonic
-    Mach numbers (:meth:`for_mach`).
+    Mach numbers (:meth:`for_mach`); blunt_le_wedge : blunt (square,
+    rounded) fin leading edges are meshed as a wedge this many fin
+    thicknesses long (0: as they are; :meth:`for_mach` sets
+    ``SUPERSONIC_LE_WEDGE`` for supersonic Mach numbers, where linear theory
+    cannot solve a blunt edge; :meth:`FinGeometry.sharpened`).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -223,16 +253,18 @@ class MeshOptions:
     refine: float = 1.0
     chord_clustering: float = 1.0
     supersonic_span_factor: float = 2.0
+    blunt_le_wedge: float = 0.0
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
 
     def for_mach(self, mach: float) -> "MeshOptions":
         """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
-        if mach <= 1.0 or self.supersonic_span_factor == 1.0:
+        if mach <= 1.0 or (self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0):
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
-                       supersonic_span_factor=1.0)
+                       supersonic_span_factor=1.0,
+                       blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE)
 
 
 def _chord_stations(n, clustering):
@@ -302,6 +334,8 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         A half model with a fin in (or crossing) the symmetry plane.
     """
     opt = options or MeshOptions()
+    if opt.blunt_le_wedge > 0:
+        geom = replace(geom, fins=tuple(f.sharpened(opt.blunt_le_wedge) for f in geom.fins))
     body = geom.body
     xs = _axial_stations(body, geom.fins, opt)
     rs = body.radius_at(xs)
@@ -389,13 +423,20 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
     u = _chord_stations(n_c, opt.chord_clustering)
     lines = []
     no_force = np.zeros((n_s, 2 * n_c), bool)       # panels closing a blunt trailing edge
+    no_axial = np.zeros((n_s, 2 * n_c), bool)       # a wedge standing in for a blunt LE
+    mid = 0.5 * (u[:-1] + u[1:])
     for j, sj in enumerate(0.5 * (s[:-1] + s[1:])):
         chord = f.chord_at(sj)
+        if chord <= 0:
+            continue
         closure = f.trailing_edge_closure(chord)
-        if closure > 0 and chord > 0:
-            aft = 0.5 * (u[:-1] + u[1:]) >= 1.0 - closure / chord   # intervals centred in it
+        if closure > 0:
+            aft = mid >= 1.0 - closure / chord                 # intervals centred in it
             aft[-1] = True
             no_force[j] = np.concatenate([aft[::-1], aft])   # lower TE -> LE, then upper LE -> TE
+        if f.blunt_leading_edge:
+            fore = mid * chord < f.bevels(chord)[0]
+            no_axial[j] = np.concatenate([fore[::-1], fore])
     for sj in s:
         chord = f.chord_at(sj)
         xle = f.x_root + f.le_at(sj)
@@ -408,11 +449,12 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
         # from lower TE over LE to upper TE
         lines.append(np.vstack([lower[::-1], upper[1:]]))
     fin = np.array(lines)
-    meta = {"no_force": no_force} if no_force.any() else {}
+    masks = {"separated": no_force, "no_axial": no_axial}
+    meta = {key: m for key, m in masks.items() if m.any()}
     net = Network(f"fin{k}", fin, "surface", meta)
     if _cell_normal(fin, 0, n_c + n_c // 2) @ e_t < 0:      # an upper-side panel
         net = Network(f"fin{k}", fin[:, ::-1], "surface",
-                      {"no_force": no_force[:, ::-1]} if meta else {})
+                      {key: m[:, ::-1] for key, m in meta.items()})
     out = [net]
     tip = fin[-1]
     if f.tip_chord > 0:

@@ -31,6 +31,12 @@ the rest of Ironbark (Galejs; :func:`ironbark_opt.aero.barrowman.body_lift`).
 It has zero slope at alpha = 0, so CN-alpha and the static margin are the
 panel solution's.
 
+Blunt (square, rounded) fin leading edges are superinclined for linear
+supersonic theory; supersonic meshes replace them by a wedge 3 fin
+thicknesses long whose panels carry no axial force
+(:meth:`panair.mesh.FinGeometry.sharpened`), and their pressure drag is
+Niskanen's (:func:`blunt_leading_edge_ca`; metadata ``mach_blunt_le_model``).
+
 Supersonic Mach numbers are solved by the built-in supersonic solver, or
 by an external PANAIR when ``use_panair`` is set; Mach numbers between the last
 subsonic and first supersonic solution are faired by
@@ -72,6 +78,28 @@ def body_planform(body) -> tuple[float, float]:
     xc = x[:-1] + w * (r[:-1] + 2 * r[1:]) / (3 * np.maximum(r[:-1] + r[1:], 1e-300))
     moment = float(np.sum(w * (r[1:] + r[:-1]) * xc))
     return area, moment / area
+
+
+def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.ndarray:
+    """Pressure drag of blunt (square, rounded) fin leading edges [-] on ``sref``
+    [m^2], for the Mach numbers [-] whose mesh replaces them by a wedge
+    (:meth:`panair.mesh.FinGeometry.sharpened`: supersonic).
+
+    Niskanen 2013 (OpenRocket technical documentation) sec. 3.4.4, as the
+    empirical estimate: square edges 0.85 q_stag/q (eq. 3.86-3.87), rounded
+    eq. 3.89, on the frontal area count x thickness x span, times cos^2 of the
+    leading-edge sweep.
+    """
+    from ironbark_opt.aero.empirical_drag import rounded_le, stagnation_ratio
+    m = np.asarray(mach, float)
+    ca = np.zeros_like(m)
+    for f in geometry.fins:
+        if f.section not in ("square", "rounded"):
+            continue
+        cd = rounded_le(m) if f.section == "rounded" else 0.85 * stagnation_ratio(m)
+        sweep = math.atan2(float(f.le_at(1.0)), f.span)
+        ca += cd * math.cos(sweep) ** 2 * int(f.count) * f.thickness * f.span / sref
+    return ca
 
 
 def _solve_one(args):
@@ -188,6 +216,13 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     finally:
         if bar:
             bar.close()
+    # blunt fin leading edges: meshed as wedges without axial force where linear
+    # theory cannot solve them (supersonic meshes); their drag is Niskanen's
+    sharpened = [float(m) for m in builtin if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0
+                 and any(f.section in ("square", "rounded") for f in geometry.fins)]
+    for m in sharpened:
+        results[m] = results[m].copy()
+        results[m][:, 0] += blunt_leading_edge_ca(geometry, m, sref)
     solved = np.array(sorted(results))
     stack = np.array([results[m] for m in solved])            # (n_solved, n_alpha, 3)
     full = transonic_bridge(solved, stack, mach) if len(gap) else stack
@@ -203,6 +238,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "mach_solved_panair": [float(m) for m in external],
             "mach_bridged": [float(m) for m in gap],
             "geometry_hash": digest.hexdigest()[:16], "symmetric": bool(symmetric),
+            "mach_blunt_le_model": sharpened,
             "pressure_rule": pressure_rule}
     return coeffs, info
 

@@ -51,6 +51,10 @@ class PanelSet:
         that real flows do not show.)
     symmetric : bool
         Half model: the mirror image y -> -y is added to every influence.
+    axial : ndarray (n,) of bool
+        False for panels whose axial (x) pressure force is left out of the
+        integration (network meta ``no_axial``: a wedge standing in for a blunt
+        fin leading edge, whose drag is modelled separately).
     """
 
     corners: np.ndarray
@@ -63,6 +67,15 @@ class PanelSet:
     wake_at_base: np.ndarray
     symmetric: bool
     names: list
+    axial: np.ndarray | None = None
+
+    def force_normals(self, normals):
+        """``normals`` (n, 3) with the x component zeroed where ``axial`` is False."""
+        if self.axial is None or self.axial.all():
+            return normals
+        out = np.array(normals, copy=True)
+        out[~self.axial, 0] = 0.0
+        return out
 
     @property
     def n(self) -> int:
@@ -115,7 +128,7 @@ def build_panels(networks, *, symmetric: bool = False, tol: float | None = None)
     allpts = np.concatenate([n.points.reshape(-1, 3) for n in networks])
     size = float(np.ptp(allpts, axis=0).max()) or 1.0
     tol = 1e-6 * size if tol is None else tol
-    corners, netid, integ, nbrs, names, isbase = [], [], [], [], [], []
+    corners, netid, integ, nbrs, names, isbase, axial, hidden = [], [], [], [], [], [], [], []
     offset = 0
     for k, net in enumerate(networks):
         names.append(net.name)
@@ -143,9 +156,18 @@ def build_panels(networks, *, symmetric: bool = False, tol: float | None = None)
         nbrs.append(nb[keep])
         netid.append(np.full(keep.sum(), k))
         force = np.full((nl, npt), net.kind == "surface")
+        hid = np.zeros((nl, npt), bool)
         if "no_force" in net.meta:      # e.g. body panels hidden under a fin root
-            force &= ~np.asarray(net.meta["no_force"], bool).reshape(nl, npt)
+            hid = np.asarray(net.meta["no_force"], bool).reshape(nl, npt)
+            force &= ~hid
+        if "separated" in net.meta:     # wetted, but its force is another model's (blunt TE)
+            force &= ~np.asarray(net.meta["separated"], bool).reshape(nl, npt)
         integ.append(force[keep])
+        hidden.append(hid[keep])
+        ax = np.ones((nl, npt), bool)
+        if "no_axial" in net.meta:
+            ax &= ~np.asarray(net.meta["no_axial"], bool).reshape(nl, npt)
+        axial.append(ax[keep])
         isbase.append(np.full(keep.sum(), net.kind == "base"))
         offset += int(keep.sum())
     if offset == 0:
@@ -189,7 +211,7 @@ def build_panels(networks, *, symmetric: bool = False, tol: float | None = None)
     integ = np.concatenate(integ)
     nbrs = np.concatenate(nbrs)
     # panels hidden under a fin root carry interior values: not gradient neighbours
-    hidden = ~integ & ~np.concatenate(isbase)
+    hidden = np.concatenate(hidden)
     nbrs = np.where((nbrs >= 0) & hidden[np.maximum(nbrs, 0)], -1, nbrs)
     wu = np.concatenate(wu) if wu else np.zeros(0, int)
     wl = np.concatenate(wl) if wl else np.zeros(0, int)
@@ -200,7 +222,9 @@ def build_panels(networks, *, symmetric: bool = False, tol: float | None = None)
     new = -np.ones(len(netid), dtype=int)
     new[~drop] = np.arange((~drop).sum())
     nbrs = np.where(nbrs >= 0, new[np.maximum(nbrs, 0)], nbrs)[~drop]
+    axial = np.concatenate(axial)
     return PanelSet(corners=corners[~drop], network=netid[~drop], integrate=integ[~drop],
+                    axial=axial[~drop],
                     neighbours=nbrs,
                     wake_corners=np.concatenate(wc) if wc else np.zeros((0, 4, 3)),
                     wake_upper=new[wu], wake_lower=np.where(wb, -1, new[wl]),

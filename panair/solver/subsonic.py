@@ -148,6 +148,7 @@ class SubsonicSolver:
             raise SolverError(f"Mach {mach}: singular influence matrix "
                               "(duplicated panels or wrongly oriented networks)")
         _, self._cen, self._nrm, self._area = panels.geometry(1.0)
+        self._nrm_f = panels.force_normals(self._nrm)      # normals for the force integration
 
     def solve(self, alpha, beta=0.0) -> list[PanelResult]:
         """Solve for one or more flow angles.
@@ -184,7 +185,7 @@ class SubsonicSolver:
                 raise SolverError(f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: "
                                   "non-finite surface pressure")
             sel = self.panels.integrate
-            c = integrate_forces(cp[sel], self._cen[sel], self._nrm[sel], self._area[sel],
+            c = integrate_forces(cp[sel], self._cen[sel], self._nrm_f[sel], self._area[sel],
                                  sref=self.sref, lref=self.lref, xref=self.xref,
                                  symmetric=self.panels.symmetric)
             out.append(PanelResult(self.mach, float(alpha[k]), float(beta[k]), cp=cp,

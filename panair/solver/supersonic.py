@@ -256,6 +256,7 @@ class SupersonicSolver:
                               "(Mach-cone coincidences or duplicated panels)")
         _, c_phys, n_phys, a_phys = panels.geometry(1.0)
         self._cen, self._nrm, self._area = c_phys[keep], n_phys[keep], a_phys[keep]
+        self._nrm_f = panels.force_normals(n_phys)[keep]   # normals for the force integration
         lifting = ~panels.wake_at_base
         fins = np.unique(panels.network[panels.wake_upper[lifting]]) if np.any(lifting) else []
         caps = _tip_caps(panels, keep, fins)
@@ -282,13 +283,13 @@ class SupersonicSolver:
         bad = _bad_panels(cp, self._cp_vac, self._cp_max)
         if not np.any(bad):
             return 0.0
-        good = integrate_forces(cp[~bad], self._cen[sel][~bad], self._nrm[sel][~bad],
+        good = integrate_forces(cp[~bad], self._cen[sel][~bad], self._nrm_f[sel][~bad],
                                 self._area[sel][~bad], sref=self.sref, lref=self.lref,
                                 xref=self.xref, symmetric=self.panels.symmetric)
         tol = max(BAD_FORCE_MAX, BAD_FORCE_FRACTION * max(abs(good["CA"]), abs(good["CY"]),
                                                           abs(good["CN"])))
         c = integrate_forces(np.where(np.isfinite(cp[bad]), cp[bad], 0.0), self._cen[sel][bad],
-                             self._nrm[sel][bad], self._area[sel][bad], sref=self.sref,
+                             self._nrm_f[sel][bad], self._area[sel][bad], sref=self.sref,
                              lref=self.lref, xref=self.xref, symmetric=self.panels.symmetric)
         arm = max(float(np.abs(self._cen[:, 0] - self.xref).max()) / self.lref, 1.0)
         force = max(abs(c["CA"]), abs(c["CY"]), abs(c["CN"])) / tol
@@ -328,7 +329,7 @@ class SupersonicSolver:
                 cp[self._nose] = (1 - w) * cp[self._nose] + w * self._tangent_cone.cp(inc)
             cpi = cp[sel]
             frac = _bad_area(cpi, self._area[sel], self._cp_vac, self._cp_max)
-            c = integrate_forces(cp[sel], self._cen[sel], self._nrm[sel], self._area[sel],
+            c = integrate_forces(cp[sel], self._cen[sel], self._nrm_f[sel], self._area[sel],
                                  sref=self.sref, lref=self.lref, xref=self.xref,
                                  symmetric=self.panels.symmetric)
             bad_load = self._bad_load(cpi, sel)

@@ -113,7 +113,7 @@ def test_blunt_trailing_edge_closure_carries_no_force(section, kw, expect):
     opt = MeshOptions(n_theta=16, n_nose=6, body_spacing=1.0, n_chord=20, n_span=3)
     nets = mesh_rocket(_rocket(section, **kw), symmetric=True, options=opt)
     fin = next(n for n in nets if n.name == "fin0")
-    mask = fin.meta.get("no_force", np.zeros((3, 40), bool))
+    mask = fin.meta.get("separated", np.zeros((3, 40), bool))
     assert mask.shape == (3, 40)
     pts = fin.points
     xc = 0.25 * (pts[:-1, :-1, 0] + pts[1:, :-1, 0] + pts[:-1, 1:, 0] + pts[1:, 1:, 0])

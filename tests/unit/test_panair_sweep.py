@@ -148,3 +148,34 @@ def test_body_only_sweep_bridges_transonic():
     ca = c["CA"][:, 0]
     # supersonic wave drag of the cone nose >> subsonic pressure drag; bridge in between
     assert ca[3] > 3 * abs(ca[1]) and min(ca[1], ca[3]) <= ca[2] <= max(ca[1], ca[3])
+
+
+def test_blunt_fin_leading_edges_solve_supersonic():
+    """Square fins: linear theory cannot solve their blunt leading edge above
+    Mach 1 (superinclined); the supersonic mesh puts a wedge of 3 t there whose
+    panels carry no axial force, and the edge's drag is Niskanen's 0.85 q_stag/q
+    on the frontal area (eq. 3.86-3.87, evaluated here by hand at Mach 2)."""
+    body = BodyGeometry(np.array([0.0, 0.3, 1.2]), np.array([0.0, 0.05, 0.05]))
+    fins = (FinGeometry(4, 0.12, 0.06, 0.1, 0.06, 1.0, 0.005, section="square"),)
+    g = RocketGeometry(body, fins)
+    sref = np.pi * 0.05**2
+    opt = MeshOptions(n_theta=16, n_nose=8, body_spacing=1.0, n_chord=12, n_span=3)
+    blunt = build_panels(mesh_rocket(g, symmetric=True, options=opt), symmetric=True)
+    with pytest.raises(SolverError, match="superinclined"):
+        make_solver(blunt, 2.0, sref=sref, lref=0.1)
+    c, info = sweep_pressure(g, [0.6, 2.0], np.radians([0.0, 2.0]), sref=sref, lref=0.1,
+                             xref=0.6, options=opt, workers=1, progress=False)
+    assert info["mach_blunt_le_model"] == [2.0]
+    sup = opt.for_mach(2.0)
+    nets = mesh_rocket(g, symmetric=True, options=sup)
+    fin = next(n for n in nets if n.name == "fin0")
+    p = build_panels(nets, symmetric=True)
+    direct = make_solver(p, 2.0, sref=sref, lref=0.1, xref=0.6).solve(np.radians([0.0, 2.0]))
+    q_stag = 1.84 - 0.76 / 4 + 0.166 / 16 + 0.035 / 64
+    le = 0.85 * q_stag * np.cos(np.arctan(0.06 / 0.1))**2 * 4 * 0.005 * 0.1 / sref
+    np.testing.assert_allclose(c["CA"][1], [r.CA + le for r in direct], rtol=1e-10)
+    np.testing.assert_allclose(c["CN"][1], [r.CN for r in direct], rtol=1e-10)
+    # the wedge panels (chord stations centred in the first 3 t) of both half-model fins
+    # lose their axial force only
+    mask = fin.meta["no_axial"]
+    assert mask.any() and (~p.axial).sum() == 2 * mask.sum() and p.integrate[~p.axial].all()
