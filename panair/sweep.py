@@ -41,7 +41,12 @@ Supersonic Mach numbers are solved by the built-in supersonic solver, or
 by an external PANAIR when ``use_panair`` is set; Mach numbers between the last
 subsonic and first supersonic solution are faired by
 :func:`panair.bridge.transonic_bridge`.  Otherwise they raise
-SolverError: a table never contains an unsolved number silently.
+SolverError: a table never contains an unsolved number silently.  The one
+exception is recorded: a supersonic angle of attack above the largest one
+linear theory solves (it breaks at large angles: expansion past vacuum)
+continues the last solved one with Jorgensen's potential-flow shape
+(:func:`_solve_one`); those angles are listed per Mach number in the
+metadata ``alpha_deg_extrapolated`` and ``ironbark aero build`` warns.
 
 Numeric-only.
 """
@@ -102,11 +107,49 @@ def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.nda
     return ca
 
 
+def _jorgensen_potential(alpha):
+    """Potential-flow normal-force shape sin(2 alpha) cos(alpha / 2) [-]
+    (Jorgensen, NASA TR R-474, 1977, eq. 1, first term)."""
+    return np.sin(2 * alpha) * np.cos(alpha / 2)
+
+
 def _solve_one(args):
+    """(mach, (n_alpha, 3) CA CN Cm, extrapolated alphas [rad]).
+
+    A supersonic angle of attack the solver reports unsolvable (linear theory
+    breaks: expansion past vacuum, singular corners) above the largest solved
+    one takes the last solved coefficients with CN and Cm scaled by Jorgensen's
+    potential-flow shape sin(2 alpha) cos(alpha/2) (same centre of pressure)
+    and CA held; the angles are returned so the table records them.  A failure
+    at or below a solved angle is raised."""
     panels, mach, alphas, sref, lref, xref, rule = args
-    res = make_solver(panels, mach, sref=sref, lref=lref, xref=xref,
-                      pressure_rule=rule).solve(alphas)
-    return mach, np.array([[r.CA, r.CN, r.Cm] for r in res])
+    solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule)
+    try:
+        return mach, np.array([[r.CA, r.CN, r.Cm] for r in solver.solve(alphas)]), []
+    except SolverError:
+        if mach < MACH_SUPERSONIC_MIN:
+            raise
+    rows, extra, last = [], [], None
+    for a in alphas:
+        if extra:                       # beyond the first failure: extrapolate the rest
+            rows.append(None)
+            extra.append(float(a))
+            continue
+        try:
+            r = solver.solve(a)[0]
+            rows.append([r.CA, r.CN, r.Cm])
+            last = (float(a), rows[-1])
+        except SolverError:
+            if last is None or abs(_jorgensen_potential(last[0])) < 1e-12:
+                raise
+            rows.append(None)
+            extra.append(float(a))
+    a0, (ca0, cn0, cm0) = last
+    g0 = _jorgensen_potential(a0)
+    out = [row if row is not None else [ca0, cn0 * _jorgensen_potential(a) / g0,
+                                        cm0 * _jorgensen_potential(a) / g0]
+           for row, a in zip(rows, alphas)]
+    return mach, np.array(out), extra
 
 
 def _panair_one(nets, mach, alphas, sref, lref, xref, symmetric, workdir):
@@ -183,6 +226,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     builtin = sub if use_panair else np.concatenate([sub, sup])
     external = sup if use_panair else np.zeros(0)
     results: dict[float, np.ndarray] = {}
+    extrapolated: dict[float, list] = {}
     jobs = [(panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
              xref, pressure_rule) for m in builtin]
     bar = None
@@ -195,17 +239,18 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             with use_executor(executor) as ex:
                 done = run_chunks(ex, _solve_one, [(job,) for job in jobs], label="panel",
                                   on_chunk=lambda i, k: bar.update() if bar else None)
-            results.update(dict(done))
+            for m, arr, ex in done:
+                results[m], extrapolated[m] = arr, ex
         elif workers > 1 and len(jobs) > 1:
             with ProcessPoolExecutor(max_workers=workers) as pool:
-                for m, arr in pool.map(_solve_one, jobs):
-                    results[m] = arr
+                for m, arr, ex in pool.map(_solve_one, jobs):
+                    results[m], extrapolated[m] = arr, ex
                     if bar:
                         bar.update()
         else:
             for job in jobs:
-                m, arr = _solve_one(job)
-                results[m] = arr
+                m, arr, ex = _solve_one(job)
+                results[m], extrapolated[m] = arr, ex
                 if bar:
                     bar.update()
         for m in external:
@@ -239,6 +284,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "mach_bridged": [float(m) for m in gap],
             "geometry_hash": digest.hexdigest()[:16], "symmetric": bool(symmetric),
             "mach_blunt_le_model": sharpened,
+            "alpha_deg_extrapolated": {f"{m:g}": [round(math.degrees(a), 6) for a in ex]
+                                       for m, ex in sorted(extrapolated.items()) if ex},
             "pressure_rule": pressure_rule}
     return coeffs, info
 

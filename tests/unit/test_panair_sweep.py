@@ -179,3 +179,23 @@ def test_blunt_fin_leading_edges_solve_supersonic():
     # lose their axial force only
     mask = fin.meta["no_axial"]
     assert mask.any() and (~p.axial).sum() == 2 * mask.sum() and p.integrate[~p.axial].all()
+
+
+def test_unsolvable_large_supersonic_angles_are_continued_and_recorded(tmp_path):
+    """Linear supersonic theory breaks at large angles (expansion past vacuum):
+    such an angle above the largest solved one continues it with Jorgensen's
+    potential-flow shape sin(2a) cos(a/2) (NASA TR R-474 eq. 1, same CP, CA
+    held), and the table says which; a direct solve of that angle is refused."""
+    alpha = np.radians([0.0, 4.0, 10.0, 20.0, 30.0])
+    sref = np.pi * 0.015**2
+    with pytest.raises(SolverError):
+        p = build_panels(mesh_rocket(_bf(), symmetric=True, options=COARSE.for_mach(1.5)),
+                         symmetric=True)
+        make_solver(p, 1.5, sref=sref, lref=0.03, xref=0.15).solve(alpha[-1])
+    t = build_table(_bf(), [0.5, 1.5], alpha, sref=sref, lref=0.03, xref=0.15, options=COARSE,
+                    workers=1, progress=False)
+    assert t.metadata["alpha_deg_extrapolated"] == {"1.5": [30.0]}
+    g = lambda a: np.sin(2 * a) * np.cos(a / 2)                     # noqa: E731
+    cn, cm, ca = (t.values(k)[1] for k in ("CN_pressure", "Cm_pressure", "CA_pressure"))
+    assert cn[4] == pytest.approx(cn[3] * g(alpha[4]) / g(alpha[3]), rel=1e-12)
+    assert cm[4] / cn[4] == pytest.approx(cm[3] / cn[3], rel=1e-12) and ca[4] == ca[3]
