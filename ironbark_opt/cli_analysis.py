@@ -15,6 +15,8 @@ def _common(func):
         click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True,
                      help="When the rocket counts as off the rail."),
         click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files)."),
+        click.option("--table", "table", type=click.Path(dir_okay=False),
+                     help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero."),
         click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg] (nominal point)."),
         click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m]."),
     ]
@@ -23,10 +25,10 @@ def _common(func):
     return func
 
 
-def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m):
+def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None):
     from ironbark_opt.vehicle import load_setup
 
-    kwargs = {"rail_exit": rail_exit}
+    kwargs = {"rail_exit": rail_exit, "table": table}
     if config is not None:
         kwargs["config"] = config
     setup = load_setup(rocket, **kwargs)
@@ -51,12 +53,12 @@ def _agg():
 @click.option("--plot", "plot_path", type=_FILE_OUT, help="Write a tornado chart of the apogee changes.")
 @json_option
 @handle_errors
-def sensitivity_command(rocket, target, names, rail_exit, config, ballast_kg, ballast_x_m, csv_path, plot_path,
-                        as_json):
+def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m, csv_path,
+                        plot_path, as_json):
     """Exact (AD) sensitivities of apogee, apogee time and speeds for ROCKET."""
     from ironbark_opt.analysis.sensitivity import sensitivities
 
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
     if target is not None and "ballast_mass" in overrides:
         from ironbark_opt.errors import InputError
         raise InputError("--ballast and --target exclude each other: the target decides the ballast",
@@ -94,14 +96,14 @@ def sensitivity_command(rocket, target, names, rail_exit, config, ballast_kg, ba
               help="Write the landing (or, without --descent, apogee) dispersion ellipses.")
 @json_option
 @handle_errors
-def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, ballast_kg,
-                       ballast_x_m, chunk, jit, executor, results_dir, progress, csv_path, hist_path, ellipse_path,
-                       as_json):
+def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, table,
+                       ballast_kg, ballast_x_m, chunk, jit, executor, results_dir, progress, csv_path, hist_path,
+                       ellipse_path, as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
     from ironbark_opt.analysis.montecarlo import montecarlo
 
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit=jit, executor=executor, output=results_dir)

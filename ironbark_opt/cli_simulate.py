@@ -20,6 +20,8 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg].")
 @click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files).")
+@click.option("--table", "table", type=click.Path(dir_okay=False),
+              help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero.")
 @click.option("--descent/--no-descent", default=False, help="Continue to landing.")
 @click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, writable=True), help="Write the time series.")
@@ -28,14 +30,14 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @json_option
 @handle_errors
 def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevation_m, rail_exit, ballast_kg,
-                     ballast_x_m, config, descent, jit, csv_path, plot_path, as_json):
+                     ballast_x_m, config, table, descent, jit, csv_path, plot_path, as_json):
     """Simulate ROCKET (.toml or .ork) to apogee and print the summary."""
     import dataclasses
 
     from ironbark_opt.flight import simulate
     from ironbark_opt.vehicle import load_setup
 
-    kwargs = {"rail_exit": rail_exit}
+    kwargs = {"rail_exit": rail_exit, "table": table}
     if config is not None:
         kwargs["config"] = config
     setup = load_setup(rocket, **kwargs)

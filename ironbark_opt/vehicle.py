@@ -131,7 +131,7 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                        source=str(rf.source))
 
 
-def load_setup(path, *, config: str | None = None, **kwargs) -> FlightSetup:
+def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> FlightSetup:
     """Read a rocket file (``.toml`` or OpenRocket ``.ork``) and assemble its
     :class:`FlightSetup`.
 
@@ -140,10 +140,21 @@ def load_setup(path, *, config: str | None = None, **kwargs) -> FlightSetup:
     path : path-like
     config : str, optional
         Motor configuration of an OpenRocket file (default: its selected one).
+    table : path-like, optional
+        An AeroTable (e.g. from ``ironbark aero build``) replacing the file's
+        aerodynamic input (table, drag curves or the empirical estimate).
     kwargs
         As in :func:`setup_from_file`.
     """
-    return setup_from_file(load_rocket_file(path, config=config), **kwargs)
+    rf = load_rocket_file(path, config=config)
+    if table is not None:
+        table = Path(table)
+        if not table.with_suffix(".csv").exists():
+            raise InputError("aerodynamic table not found (expected the .csv written by "
+                             "'ironbark aero build')", source=table, field="table")
+        rf = dataclasses.replace(rf, aero=dataclasses.replace(
+            rf.aero, table=table, drag_power_off=None, drag_power_on=None))
+    return setup_from_file(rf, **kwargs)
 
 
 def load_rocket_geometry(path):

@@ -83,3 +83,24 @@ def test_info_reports_digest_verification(env):
     motors = {m["designation"]: m for m in json.loads(res.output)["selected_motors"]}
     assert motors["K550W"]["digest_verified"] is True
     assert motors["I211W"]["file"] is None
+
+
+def test_ork_flies_its_panel_table(env):
+    """.ork -> 'aero build' (geometry only) -> 'simulate --table': the panel table
+    replaces the empirical estimate; the two independent drag models put the
+    apogee within 10 % of each other; a missing table is a clear error."""
+    rocket = _weco_rocket(env)
+    stem = env / "simple"
+    res = CliRunner().invoke(main, ["aero", "build", str(rocket), "--mach", "0.05,0.2,0.35",
+                                    "--alpha-deg", "0,4,8,16", "--refine", "0.5", "--workers", "1",
+                                    "--out", str(stem), "--json"])
+    assert res.exit_code == 0, res.output
+    base = json.loads(CliRunner().invoke(main, ["simulate", str(rocket), "--json"]).output)
+    res = CliRunner().invoke(main, ["simulate", str(rocket), "--table", f"{stem}.csv", "--json"])
+    assert res.exit_code == 0, res.output
+    panel = json.loads(res.output[res.output.index("{"):])
+    print(f"\napogee: empirical {base['apogee_agl_m']:.1f} m, panel table {panel['apogee_agl_m']:.1f} m")
+    assert panel["apogee_agl_m"] != base["apogee_agl_m"]
+    assert panel["apogee_agl_m"] == pytest.approx(base["apogee_agl_m"], rel=0.10)
+    res = CliRunner().invoke(main, ["simulate", str(rocket), "--table", str(env / "nope.csv")])
+    assert res.exit_code == 2 and "aerodynamic table not found" in res.output
