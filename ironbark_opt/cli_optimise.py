@@ -46,6 +46,8 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--ballast-x", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--free-position", is_flag=True, help="Optimise the position within the ballast bay too.")
 @click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True)
+@click.option("--table", "table", type=click.Path(dir_okay=False),
+              help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero.")
 @click.option("--processes", type=int, help="Worker processes for several motors.")
 @click.option("--executor", metavar="local|local:N|dask://HOST:PORT",
               help="Where several motors are solved (replaces --processes): this process, N local "
@@ -55,13 +57,14 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, forecast, site, time, min_rail_speed, min_margin,
-                    max_ballast, ballast_x, free_position, rail_exit, processes, executor, plot_path, as_json):
+                    max_ballast, ballast_x, free_position, rail_exit, table, processes, executor, plot_path,
+                    as_json):
     """Ballast (and motor) that put ROCKET's apogee on --target."""
     from ironbark_opt.optimise.ballast import solve_ballast
     from ironbark_opt.optimise.motor_choice import choose_motor
     from ironbark_opt.vehicle import load_setup
 
-    setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit), forecast, site, time)
+    setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table), forecast, site, time)
     kwargs = dict(mass_max=max_ballast, ballast_x=ballast_x, free_position=free_position,
                   min_rail_speed=min_rail_speed, min_margin=min_margin)
     if executor is not None and not motors:
@@ -70,7 +73,8 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
         if forecast is not None:
             processes = 1          # the forecast profile lives in this process only (an executor ships it)
         ranking = choose_motor(setup, motors, target, objective=objective, processes=processes,
-                               load_kwargs={"rail_exit": rail_exit}, executor=executor, **kwargs)
+                               load_kwargs={"rail_exit": rail_exit, "table": table}, executor=executor,
+                               **kwargs)
         best = ranking.best or (ranking.solutions[0] if ranking.solutions else None)
         result = ranking.to_dict()
         if best is not None:
