@@ -82,7 +82,8 @@ class BodyOfRevolution(abc.ABC):
         """Outer radius [m] at absolute ``x`` [m] (0 outside the component); numeric-only."""
         x = np.asarray(x, dtype=float)
         local = x - self.x
-        inside = (local >= 0.0) & (local <= self.length)
+        tol = 1e-9                       # [m]: x - self.x rounds off at the ends (x_end = x + length)
+        inside = (local >= -tol) & (local <= self.length + tol)
         return np.where(inside, self._local_radius(np.clip(local, 0.0, self.length)), 0.0)
 
     @abc.abstractmethod

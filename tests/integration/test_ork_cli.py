@@ -88,7 +88,9 @@ def test_info_reports_digest_verification(env):
 def test_ork_flies_its_panel_table(env):
     """.ork -> 'aero build' (geometry only) -> 'simulate --table': the panel table
     replaces the empirical estimate; the two independent drag models put the
-    apogee within 10 % of each other; a missing table is a clear error."""
+    apogee within 3 % of each other (measured: 267.3 vs 267.1 m; before the base
+    radius fix the empirical flight had no base drag: 292.5 m); a missing table is a
+    clear error."""
     rocket = _weco_rocket(env)
     stem = env / "simple"
     res = CliRunner().invoke(main, ["aero", "build", str(rocket), "--mach", "0.05,0.2,0.35",
@@ -101,6 +103,6 @@ def test_ork_flies_its_panel_table(env):
     panel = json.loads(res.output[res.output.index("{"):])
     print(f"\napogee: empirical {base['apogee_agl_m']:.1f} m, panel table {panel['apogee_agl_m']:.1f} m")
     assert panel["apogee_agl_m"] != base["apogee_agl_m"]
-    assert panel["apogee_agl_m"] == pytest.approx(base["apogee_agl_m"], rel=0.10)
+    assert panel["apogee_agl_m"] == pytest.approx(base["apogee_agl_m"], rel=0.03)
     res = CliRunner().invoke(main, ["simulate", str(rocket), "--table", str(env / "nope.csv")])
     assert res.exit_code == 2 and "aerodynamic table not found" in res.output

@@ -44,6 +44,9 @@ def test_body_profile_covers_the_body():
     print(f"profile(300) volume {vol:.6e} vs components {ref:.6e}")
     assert vol == pytest.approx(ref, rel=1e-3)
     assert r.radius_at(np.array([-1.0, 1.0, 2.502656, 3.0])) == pytest.approx([0, 0.0635, 0.0535, 0])
+    # the aft end itself (x_end = x + length rounds off): the base radius, not "off the body"
+    # (it was 0 for Calisto's tail: flights without drag curves lost their base drag)
+    assert float(r.radius_at(r.length())) == pytest.approx(0.0435)
 
 
 def test_step_in_radius_appears_twice():
