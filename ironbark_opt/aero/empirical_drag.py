@@ -11,7 +11,8 @@ software* (OpenRocket technical documentation, 2013), sec. 3.4:
 - nose cone: subsonic 0.8 sin^2(phi) with phi the joint half-angle of the
   nose profile (eq. 3.81); above M = 1 the same value times q_stag/q
   (rough supersonic continuation, a stand-in until the panel solver);
-- fin leading edges, rounded: (1 - M^2)^-0.417 - 1 (M < 0.9),
+- fin leading edges, rounded (also airfoil and bevelled double-wedge
+  sections, as OpenRocket treats airfoils): (1 - M^2)^-0.417 - 1 (M < 0.9),
   1 - 1.785 (M - 0.9) (0.9 < M < 1), 1.214 - 0.502/M^2 + 0.1095/M^4 (M > 1)
   (eq. 3.89); square: 0.85 q_stag/q (eq. 3.87); on the frontal area
   thickness x span x count, times cos^2 of the leading-edge sweep;
@@ -81,7 +82,9 @@ def pressure_ca(rocket, mach) -> np.ndarray:
     for fins in rocket.fin_sets():
         frontal = fins.thickness * fins.span * fins.count / a_ref
         sweep = np.arctan2(fins.sweep_length, fins.span)
-        le = rounded_le(m) if fins.section.kind in ("rounded", "airfoil") else 0.85 * q
+        # streamlined edges (rounded, airfoil, bevelled double wedge) take the rounded-edge
+        # formula as OpenRocket does for airfoils; only a square edge stagnates
+        le = 0.85 * q if fins.section.kind == "square" else rounded_le(m)
         ca += le * np.cos(sweep) ** 2 * frontal
         ca += np.asarray(cd_base(m), dtype=float) * fins.trailing_edge_base_area() / a_ref
     return ca

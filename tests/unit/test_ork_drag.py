@@ -66,3 +66,22 @@ def test_rounded_trailing_edge_takes_half_the_base_drag():
     airfoil, _ = fins_ca("airfoil")
     assert rounded - airfoil == pytest.approx(0.5 * 0.12 * frontal, rel=1e-9)
     assert airfoil == pytest.approx(0.0, abs=1e-12)      # rounded LE drag is 0 at M = 0
+
+
+def test_bevelled_fins_are_not_square_at_the_leading_edge():
+    """A double-wedge (bevelled) fin's sharp leading edge takes the rounded-edge formula
+    (eq. 3.89, as OpenRocket's airfoils), not the square edge's 0.85 q_stag/q."""
+    def fins_ca(section, m):
+        r = Rocket("t", [NoseCone(shape="tangent_ogive", length=0.3, radius=0.05),
+                         BodyTube(x=0.3, length=1.0, radius=0.05),
+                         TrapezoidalFins(count=3, x=1.1, thickness=0.004, root_chord=0.2,
+                                         tip_chord=0.1, span=0.1, sweep_length=0.0,
+                                         section=section)])
+        return pressure_ca(r, np.array([m]))[0], 0.004 * 0.1 * 3 / r.reference_area()
+    for m in (0.3, 2.0):
+        bevel, frontal = fins_ca(FinSection(kind="hexagonal", le_bevel=0.02, te_bevel=0.02), m)
+        airfoil, _ = fins_ca(FinSection(kind="airfoil"), m)
+        assert bevel == pytest.approx(airfoil, rel=1e-12)
+        assert bevel == pytest.approx(float(rounded_le(m)) * frontal + pressure_ca(
+            Rocket("n", [NoseCone(shape="tangent_ogive", length=0.3, radius=0.05),
+                         BodyTube(x=0.3, length=1.0, radius=0.05)]), np.array([m]))[0], rel=1e-9)
