@@ -37,6 +37,7 @@ import numpy as np
 from ironbark_opt.errors import InputError
 from ironbark_opt.motors.base import G0
 from ironbark_opt.motors.solid import SolidMotor
+from ironbark_opt.validate import is_float
 
 #: Delays at or above this [s] are placeholders, not real delays.
 PLACEHOLDER_DELAY = 100.0
@@ -114,14 +115,6 @@ def build_motor(time, thrust, fields: dict, overrides: dict, *, source, line) ->
         raise
 
 
-def _is_number(tok: str) -> bool:
-    try:
-        float(tok)
-        return True
-    except ValueError:
-        return False
-
-
 def _tokens(text: str):
     """(line_number, tokens) for lines with content after removing comments."""
     for n, raw in enumerate(text.splitlines(), start=1):
@@ -156,7 +149,7 @@ def read_eng(path: str | PathLike, **overrides) -> list[SolidMotor]:
     src = Path(path)
     blocks = []          # (header_line, header_tokens or None, [(line, t, F)])
     for n, toks in _tokens(read_text(path)):
-        if not _is_number(toks[0]):
+        if not is_float(toks[0]):
             if len(toks) < len(_HEADER_FIELDS):
                 missing = ", ".join(_HEADER_FIELDS[len(toks):])
                 raise InputError(
@@ -166,7 +159,7 @@ def read_eng(path: str | PathLike, **overrides) -> list[SolidMotor]:
             blocks.append((n, toks, []))
             continue
         if not blocks:   # numbers before any header: headerless or 3-number header
-            if len(toks) == 3 and all(_is_number(x) for x in toks):
+            if len(toks) == 3 and all(is_float(x) for x in toks):
                 blocks.append((n, toks, []))
                 continue
             blocks.append((n, None, []))

@@ -26,6 +26,7 @@ import numpy as np
 from ironbark_opt.errors import InputError
 from ironbark_opt.motors.rasp import build_motor, common_name, parse_number, read_text
 from ironbark_opt.motors.solid import SolidMotor
+from ironbark_opt.validate import is_float
 
 #: 1 lbf in N (exact, NIST SP 811, appendix B.8).
 LBF = 4.4482216152605
@@ -75,7 +76,7 @@ def read_thrust_csv(path: str | PathLike, **mass_kwargs) -> SolidMotor:
         if not line or line[0] in "#;":
             continue
         cells = _split(line)
-        if cols is None and header_line is None and not rows and not _numeric(cells[0]):
+        if cols is None and header_line is None and not rows and not is_float(cells[0]):
             cols, scales = _columns(cells, src, n)
             header_line = n
             continue
@@ -106,14 +107,6 @@ def read_thrust_csv(path: str | PathLike, **mass_kwargs) -> SolidMotor:
     t = np.array([r[0] for r in rows])
     F = np.array([r[1] for r in rows])
     return build_motor(t, F, fields, mass_kwargs, source=src, line=None)
-
-
-def _numeric(cell: str) -> bool:
-    try:
-        float(cell)
-        return True
-    except ValueError:
-        return False
 
 
 def _columns(cells, src, n):

@@ -19,6 +19,8 @@ import hashlib
 import math
 from pathlib import Path
 
+from ironbark_opt.validate import is_float
+
 _EPS = 1e-11
 _TIME, _MASS_SPECIFIC, _FORCE = (0, 1000), (1, 10000), (5, 1000)
 
@@ -81,19 +83,11 @@ def eng_digests(path) -> dict[str, str]:
         if not line:
             continue
         parts = line.split()
-        if len(parts) == 7 and not _is_number(parts[0]):
+        if len(parts) == 7 and not is_float(parts[0]):
             flush()
             header, time, thrust = parts, [], []
-        elif len(parts) == 2 and header is not None and all(_is_number(p) for p in parts):
+        elif len(parts) == 2 and header is not None and all(is_float(p) for p in parts):
             time.append(float(parts[0]))
             thrust.append(float(parts[1]))
     flush()
     return out
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-        return True
-    except ValueError:
-        return False
