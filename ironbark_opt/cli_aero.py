@@ -87,17 +87,19 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     Path(out).parent.mkdir(parents=True, exist_ok=True)
     csv_path, json_path = table.save(out)
     md = table.metadata
-    if md.get("alpha_deg_extrapolated"):
-        warnings.warn("linear supersonic theory did not solve every angle of attack; continued with "
-             "Jorgensen's potential-flow shape at Mach: " + "; ".join(
-                 f"{m} ({', '.join(f'{a:g}' for a in al)} deg)"
-                 for m, al in md["alpha_deg_extrapolated"].items()))
+    extrapolated = md.get("alpha_deg_extrapolated", {})
+    if extrapolated:
+        warnings.warn("linear supersonic theory did not solve every angle of attack; continued "
+                      "with Jorgensen's potential-flow shape at Mach: " + "; ".join(
+                          f"{m} ({', '.join(f'{a:g}' for a in al)} deg)"
+                          for m, al in extrapolated.items()))
+    n_sup = md.get("panels_supersonic", 0)
     result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
-              "panels_supersonic": md.get("panels_supersonic", 0),
-              "alpha_deg_extrapolated": md.get("alpha_deg_extrapolated", {}), "mach": mach_v, "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
+              "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
+              "mach": mach_v, "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
               "reference_length_m": lref, "moment_reference_x_m": 0.0}
     human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
-             f"{md['panels']} panels ({md.get('panels_supersonic', 0)} supersonic), includes {', '.join(table.includes)}")
+             f"{md['panels']} panels ({n_sup} supersonic), includes {', '.join(table.includes)}")
     emit(result, as_json, human)
 
 

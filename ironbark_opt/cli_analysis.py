@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 _FILE_OUT = click.Path(dir_okay=False, writable=True)
@@ -15,8 +15,7 @@ def _common(func):
         click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True,
                      help="When the rocket counts as off the rail."),
         click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files)."),
-        click.option("--table", "table", type=click.Path(dir_okay=False),
-                     help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero."),
+        table_option,
         click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg] (nominal point)."),
         click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m]."),
     ]

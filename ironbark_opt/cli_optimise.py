@@ -5,7 +5,7 @@ import dataclasses
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
@@ -46,8 +46,7 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--ballast-x", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--free-position", is_flag=True, help="Optimise the position within the ballast bay too.")
 @click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True)
-@click.option("--table", "table", type=click.Path(dir_okay=False),
-              help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero.")
+@table_option
 @click.option("--processes", type=int, help="Worker processes for several motors.")
 @click.option("--executor", metavar="local|local:N|dask://HOST:PORT",
               help="Where several motors are solved (replaces --processes): this process, N local "

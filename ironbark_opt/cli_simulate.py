@@ -5,7 +5,7 @@ import math
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 
@@ -20,8 +20,7 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg].")
 @click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files).")
-@click.option("--table", "table", type=click.Path(dir_okay=False),
-              help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero.")
+@table_option
 @click.option("--descent/--no-descent", default=False, help="Continue to landing.")
 @click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, writable=True), help="Write the time series.")
