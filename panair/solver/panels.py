@@ -155,19 +155,12 @@ def build_panels(networks, *, symmetric: bool = False, tol: float | None = None)
         corners.append(cr[keep])
         nbrs.append(nb[keep])
         netid.append(np.full(keep.sum(), k))
-        force = np.full((nl, npt), net.kind == "surface")
-        hid = np.zeros((nl, npt), bool)
-        if "no_force" in net.meta:      # e.g. body panels hidden under a fin root
-            hid = np.asarray(net.meta["no_force"], bool).reshape(nl, npt)
-            force &= ~hid
-        if "separated" in net.meta:     # wetted, but its force is another model's (blunt TE)
-            force &= ~np.asarray(net.meta["separated"], bool).reshape(nl, npt)
+        hid = _meta_mask(net, "no_force", nl, npt)       # e.g. body panels under a fin root
+        separated = _meta_mask(net, "separated", nl, npt)  # wetted, its force another model's
+        force = (net.kind == "surface") & ~hid & ~separated
         integ.append(force[keep])
         hidden.append(hid[keep])
-        ax = np.ones((nl, npt), bool)
-        if "no_axial" in net.meta:
-            ax &= ~np.asarray(net.meta["no_axial"], bool).reshape(nl, npt)
-        axial.append(ax[keep])
+        axial.append(~_meta_mask(net, "no_axial", nl, npt)[keep])
         isbase.append(np.full(keep.sum(), net.kind == "base"))
         offset += int(keep.sum())
     if offset == 0:
@@ -229,6 +222,13 @@ def build_panels(networks, *, symmetric: bool = False, tol: float | None = None)
                     wake_corners=np.concatenate(wc) if wc else np.zeros((0, 4, 3)),
                     wake_upper=new[wu], wake_lower=np.where(wb, -1, new[wl]),
                     wake_at_base=wb, symmetric=symmetric, names=names)
+
+
+def _meta_mask(net, key, nl, npt):
+    """Panel mask ``net.meta[key]`` as (nl, npt) booleans (all False when absent)."""
+    if key not in net.meta:
+        return np.zeros((nl, npt), bool)
+    return np.asarray(net.meta[key], bool).reshape(nl, npt)
 
 
 def _edge_key(a, b, tol):
