@@ -95,15 +95,15 @@ def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.nda
     eq. 3.89, on the frontal area count x thickness x span, times cos^2 of the
     leading-edge sweep.
     """
-    from ironbark_opt.aero.empirical_drag import rounded_le, stagnation_ratio
+    from ironbark_opt.aero.empirical_drag import leading_edge_cd
     m = np.asarray(mach, float)
     ca = np.zeros_like(m)
     for f in geometry.fins:
         if f.section not in ("square", "rounded"):
             continue
-        cd = rounded_le(m) if f.section == "rounded" else 0.85 * stagnation_ratio(m)
         sweep = math.atan2(float(f.le_at(1.0)), f.span)
-        ca += cd * math.cos(sweep) ** 2 * int(f.count) * f.thickness * f.span / sref
+        ca += (leading_edge_cd(m, f.section) * math.cos(sweep) ** 2
+               * int(f.count) * f.thickness * f.span / sref)
     return ca
 
 

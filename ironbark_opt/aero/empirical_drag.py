@@ -57,6 +57,14 @@ def rounded_le(mach):
     return np.where(m < 0.9, sub, np.where(m < 1.0, trans, sup))
 
 
+def leading_edge_cd(mach, kind: str):
+    """Fin leading-edge pressure drag on its frontal area [-] (Niskanen 2013): a
+    square edge 0.85 q_stag/q (eq. 3.87); streamlined ones (rounded, airfoil,
+    bevelled double wedge) eq. 3.89, as OpenRocket does for airfoils; numeric-only."""
+    m = np.asarray(mach, dtype=float)
+    return 0.85 * stagnation_ratio(m) if kind == "square" else rounded_le(m)
+
+
 def _joint_half_angle(comp) -> float:
     x, r = comp.profile(2001)
     return float(np.arctan(abs(r[-1] - r[-2]) / (x[-1] - x[-2])))
@@ -82,10 +90,7 @@ def pressure_ca(rocket, mach) -> np.ndarray:
     for fins in rocket.fin_sets():
         frontal = fins.thickness * fins.span * fins.count / a_ref
         sweep = np.arctan2(fins.sweep_length, fins.span)
-        # streamlined edges (rounded, airfoil, bevelled double wedge) take the rounded-edge
-        # formula as OpenRocket does for airfoils; only a square edge stagnates
-        le = 0.85 * q if fins.section.kind == "square" else rounded_le(m)
-        ca += le * np.cos(sweep) ** 2 * frontal
+        ca += leading_edge_cd(m, fins.section.kind) * np.cos(sweep) ** 2 * frontal
         ca += np.asarray(cd_base(m), dtype=float) * fins.trailing_edge_base_area() / a_ref
     return ca
 
