@@ -129,27 +129,20 @@ def _solve_one(args):
     except SolverError:
         if mach < MACH_SUPERSONIC_MIN:
             raise
-    rows, extra, last = [], [], None
-    for a in alphas:
-        if extra:                       # beyond the first failure: extrapolate the rest
-            rows.append(None)
-            extra.append(float(a))
-            continue
+    rows = []
+    for i, a in enumerate(alphas):
         try:
             r = solver.solve(a)[0]
-            rows.append([r.CA, r.CN, r.Cm])
-            last = (float(a), rows[-1])
         except SolverError:
-            if last is None or abs(_jorgensen_potential(last[0])) < 1e-12:
+            if not rows or abs(_jorgensen_potential(alphas[i - 1])) < 1e-12:
                 raise
-            rows.append(None)
-            extra.append(float(a))
-    a0, (ca0, cn0, cm0) = last
-    g0 = _jorgensen_potential(a0)
-    out = [row if row is not None else [ca0, cn0 * _jorgensen_potential(a) / g0,
-                                        cm0 * _jorgensen_potential(a) / g0]
-           for row, a in zip(rows, alphas)]
-    return mach, np.array(out), extra
+            break
+        rows.append([r.CA, r.CN, r.Cm])
+    (ca0, cn0, cm0), g0 = rows[-1], _jorgensen_potential(alphas[len(rows) - 1])
+    extra = [float(a) for a in alphas[len(rows):]]      # the first failure and all above it
+    rows += [[ca0, cn0 * _jorgensen_potential(a) / g0, cm0 * _jorgensen_potential(a) / g0]
+             for a in extra]
+    return mach, np.array(rows), extra
 
 
 def _panair_one(nets, mach, alphas, sref, lref, xref, symmetric, workdir):
@@ -239,18 +232,18 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             with use_executor(executor) as ex:
                 done = run_chunks(ex, _solve_one, [(job,) for job in jobs], label="panel",
                                   on_chunk=lambda i, k: bar.update() if bar else None)
-            for m, arr, ex in done:
-                results[m], extrapolated[m] = arr, ex
+            for m, arr, extra in done:
+                results[m], extrapolated[m] = arr, extra
         elif workers > 1 and len(jobs) > 1:
             with ProcessPoolExecutor(max_workers=workers) as pool:
-                for m, arr, ex in pool.map(_solve_one, jobs):
-                    results[m], extrapolated[m] = arr, ex
+                for m, arr, extra in pool.map(_solve_one, jobs):
+                    results[m], extrapolated[m] = arr, extra
                     if bar:
                         bar.update()
         else:
             for job in jobs:
-                m, arr, ex = _solve_one(job)
-                results[m], extrapolated[m] = arr, ex
+                m, arr, extra = _solve_one(job)
+                results[m], extrapolated[m] = arr, extra
                 if bar:
                     bar.update()
         for m in external:
@@ -284,8 +277,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "mach_bridged": [float(m) for m in gap],
             "geometry_hash": digest.hexdigest()[:16], "symmetric": bool(symmetric),
             "mach_blunt_le_model": sharpened,
-            "alpha_deg_extrapolated": {f"{m:g}": [round(math.degrees(a), 6) for a in ex]
-                                       for m, ex in sorted(extrapolated.items()) if ex},
+            "alpha_deg_extrapolated": {f"{m:g}": [round(math.degrees(a), 6) for a in extra]
+                                       for m, extra in sorted(extrapolated.items()) if extra},
             "pressure_rule": pressure_rule}
     return coeffs, info
 
