@@ -165,16 +165,20 @@ def load_rocket_geometry(path):
     ----------
     path : path-like
     """
-    path = Path(path)
-    if not path.exists():
-        raise InputError("file not found", source=path)
+    path = _existing(path)
     if path.suffix.lower() == ".ork":
         from ironbark_opt.openrocket.build import load_ork_geometry
         from ironbark_opt.rocket.specs import AeroSpec
         return load_ork_geometry(path), AeroSpec()
-    from ironbark_opt.rocket.toml_io import load_rocket_toml
-    rf = load_rocket_toml(path)
+    rf = load_rocket_file(path)                 # a TOML file resolves no motor on loading
     return rf.rocket, rf.aero
+
+
+def _existing(path) -> Path:
+    path = Path(path)
+    if not path.exists():
+        raise InputError("file not found", source=path)
+    return path
 
 
 def load_rocket_file(path, *, config: str | None = None):
@@ -187,15 +191,9 @@ def load_rocket_file(path, *, config: str | None = None):
     config : str, optional
         Motor configuration of an OpenRocket file (default: its selected one).
     """
-    path = Path(path)
-    if not path.exists():
-        raise InputError("file not found", source=path)
+    path = _existing(path)
     if path.suffix.lower() == ".ork":
-        try:
-            from ironbark_opt.openrocket import load_ork
-        except ModuleNotFoundError:
-            raise InputError("OpenRocket .ork files are not supported yet: describe the rocket in TOML "
-                             "(docs/rocket-toml.md)", source=path) from None
+        from ironbark_opt.openrocket import load_ork
         rf = load_ork(path, config=config)
     else:
         if config is not None:
