@@ -31,13 +31,17 @@ STREAMER_CD = 0.6
 _IGNITE_AT_LAUNCH = ("automatic", "launch", "ignition")
 
 
-def check_flyable(doc: OrkDocument, config) -> None:
-    """InputError naming the first feature of ``config`` we cannot fly yet."""
+def _single_stage(doc: OrkDocument, what: str, instead: str) -> None:
+    """InputError naming the second stage of a multi-stage rocket."""
     if len(doc.rocket.stages) > 1:
         s = doc.rocket.stages[1]
-        raise InputError(f"multi-stage separation is not supported yet (stage '{s.name}'); "
-                         f"remove the lower stages to fly the sustainer alone",
-                         source=doc.path, field=s.path)
+        raise InputError(f"{what} not supported yet (stage '{s.name}'); remove the lower stages "
+                         f"to {instead}", source=doc.path, field=s.path)
+
+
+def check_flyable(doc: OrkDocument, config) -> None:
+    """InputError naming the first feature of ``config`` we cannot fly yet."""
+    _single_stage(doc, "multi-stage separation is", "fly the sustainer alone")
     for mount, entry in config.motors:
         if entry.ignition_event not in _IGNITE_AT_LAUNCH or entry.ignition_delay > 0.0:
             raise InputError(f"air-start is not supported yet: motor {entry.designation} in "
@@ -165,11 +169,7 @@ def load_ork_geometry(path) -> Rocket:
     Raises InputError for a damaged file or an unsupported component, and for
     more than one stage (the table would mesh the stack)."""
     doc = read_ork(path)
-    if len(doc.rocket.stages) > 1:
-        s = doc.rocket.stages[1]
-        raise InputError(f"multi-stage rockets are not supported yet (stage '{s.name}'); "
-                         "remove the lower stages to build the sustainer's table",
-                         source=doc.path, field=s.path)
+    _single_stage(doc, "multi-stage rockets are", "build the sustainer's table")
     return geometry(doc)
 
 
