@@ -39,14 +39,22 @@ def test_source_potential_vs_quadrature(k):
     assert ours[-1] == 0.0                            # upstream point: outside the cone
 
 
-def test_transonic_and_superinclined_cases_are_reported():
+@pytest.fixture(scope="module")
+def coarse_finner():
+    """A coarse Basic Finner half model and its Mach 2.5 solver."""
     body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
     fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
     opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
-    finned = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
+    panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
                           symmetric=True)
+    return panels, make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+
+
+def test_transonic_and_superinclined_cases_are_reported(coarse_finner):
+    finned, _ = coarse_finner
     with pytest.raises(SolverError, match="transonic"):
         make_solver(finned, 1.05, sref=np.pi / 4, lref=1.0)
+    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
     blunt = BodyGeometry(np.array([0.0, 0.3, 3.0]), np.array([0.2, 0.5, 0.5]))   # flat nose cap
     panels = build_panels(mesh_rocket(RocketGeometry(blunt), symmetric=True, options=opt),
                           symmetric=True)
@@ -54,13 +62,9 @@ def test_transonic_and_superinclined_cases_are_reported():
         make_solver(panels, 2.0, sref=np.pi / 4, lref=1.0)
 
 
-def test_fin_shadow_separates_the_two_faces():
+def test_fin_shadow_separates_the_two_faces(coarse_finner):
     from panair.solver.supersonic import _fin_shadow
-    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
-    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
-    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
-    panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
-                          symmetric=True)
+    panels, _ = coarse_finner
     keep = panels.integrate
     _, c, n, _ = panels.geometry()
     sh = _fin_shadow(panels, keep, c[keep], n[keep])
@@ -74,17 +78,6 @@ def test_fin_shadow_separates_the_two_faces():
     assert not sh[np.ix_(up, up)].any() and not np.diag(sh).any()
     nose = np.nonzero(c[keep][:, 0] < 2.0)[0]
     assert not sh[nose].any()                                      # the nose sees every fin face
-
-
-@pytest.fixture(scope="module")
-def coarse_finner():
-    """A coarse Basic Finner half model and its Mach 2.5 solver."""
-    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
-    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
-    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
-    panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
-                          symmetric=True)
-    return panels, make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
 
 
 def test_singular_panels_carrying_load_are_reported(coarse_finner):
