@@ -443,7 +443,10 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
         xi = u * chord
         h = f.half_thickness(xi, chord) if chord > 0 else np.zeros_like(xi)   # pointed tip
         r_root = body.radius_at(xle + xi)
-        rad = np.sqrt(np.maximum(r_root**2 - h**2, 0.0)) + sj * f.span
+        # the root follows the body; the span is measured from the body at the root
+        # leading edge, so the tip stays straight over a boattail or transition
+        r_le = float(body.radius_at(f.x_root))
+        rad = np.sqrt(np.maximum(r_root**2 - h**2, 0.0)) + sj * (f.span + r_le - r_root)
         lower = (xle + xi)[:, None] * np.array([1.0, 0, 0]) + rad[:, None] * e_r - h[:, None] * e_t
         upper = (xle + xi)[:, None] * np.array([1.0, 0, 0]) + rad[:, None] * e_r + h[:, None] * e_t
         # from lower TE over LE to upper TE

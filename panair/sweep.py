@@ -7,15 +7,20 @@ number the panels' influence matrix is built and factorised once and all
 angles are right-hand sides; Mach numbers run in parallel in a process
 pool with a progress bar.
 
-The table a user plots is the total: ``CA = CA_pressure + CA_friction +
-CA_base`` where
+The table's axial force is ``CA = CA_pressure + CA_base``; skin friction is
+flown at the flight's own Reynolds number (:mod:`ironbark_opt.aero.model`
+adds it at every step), so:
 
-* ``CA_pressure`` is the panel solution (body, fins; base excluded);
+* ``CA_pressure`` is the zero-lift pressure drag model of
+  :mod:`panair.transonic` (separated flow and edges below the critical Mach
+  number, the transonic rise, the supersonic panel wave drag) plus the panel
+  solution's angle-of-attack increment (``CA_pressure_linear`` keeps the
+  panel solution itself);
 * ``CA_friction`` is :class:`ironbark_opt.aero.friction.FrictionDrag`
   (component build-up) at the sea-level ISA unit Reynolds number of each
   Mach number, Re/m = rho0 a0 M / mu0 (ICAO standard atmosphere, 1993:
-  rho0 = 1.225 kg/m^3, a0 = 340.294 m/s, mu0 = 1.7894e-5 Pa s) — a table
-  has no Reynolds axis, and sea level is where drag matters most;
+  rho0 = 1.225 kg/m^3, a0 = 340.294 m/s, mu0 = 1.7894e-5 Pa s), for
+  reference only (part of ``CA`` with ``friction_in_table``);
 * ``CA_base`` is :class:`ironbark_opt.aero.base_drag.BaseDrag` (power
   off; ``CA_power_on`` uses the jet area given; its model, by default
   McCoy's MC DRAG base pressure above Mach 1, is recorded in the metadata
@@ -41,8 +46,12 @@ Supersonic Mach numbers are solved by the built-in supersonic solver, or
 by an external PANAIR when ``use_panair`` is set; Mach numbers between the last
 subsonic and first supersonic solution are faired by
 :func:`panair.bridge.transonic_bridge`.  Otherwise they raise
-SolverError: a table never contains an unsolved number silently.  The one
-exception is recorded: a supersonic angle of attack above the largest one
+SolverError: a table never contains an unsolved number silently.  A
+supersonic Mach number linear theory cannot solve at all (panels steeper
+than the Mach cone, non-physical pressures at the lifting angles) is solved
+by the local-inclination method instead (tangent cone, tangent wedge,
+Prandtl-Meyer; :mod:`panair.solver.local_inclination`), listed in the
+metadata ``mach_local_inclination``.  The other exception is recorded: a supersonic angle of attack above the largest one
 linear theory solves (it breaks at large angles: expansion past vacuum)
 continues the last solved one with Jorgensen's potential-flow shape
 (:func:`_solve_one`); those angles are listed per Mach number in the
@@ -146,9 +155,9 @@ def _solve_one(args):
             r = solver.solve(a)[0]
         except SolverError:
             if not rows or abs(_jorgensen_potential(alphas[i - 1])) < 1e-12:
-                if not rows:          # linear theory cannot solve this Mach number at all
-                    return _local_inclination(panels, mach, alphas, sref, lref, xref)
-                raise
+                # linear theory solves no lifting angle of this Mach number: all of it
+                # from local inclination (one method per Mach number, never mixed)
+                return _local_inclination(panels, mach, alphas, sref, lref, xref)
             break
         rows.append([r.CA, r.CN, r.Cm])
     (ca0, cn0, cm0), g0 = rows[-1], _jorgensen_potential(alphas[len(rows) - 1])
