@@ -39,6 +39,7 @@ information with correlated errors; ask for them with ``channels=``.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Mapping, Sequence
 
@@ -104,10 +105,14 @@ class Calibration:
         return {k: float(v) for k, v in self.values.items() if k not in NUISANCE}
 
     def to_dict(self) -> dict:
-        """Unit-suffixed summary (parameter units in ``units``)."""
-        return {"rocket": self.rocket, "log": self.log, "values": dict(self.values), "start": dict(self.start),
-                "standard_errors": dict(self.standard_errors),
-                "units": {k: {TIME_OFFSET: "s", BARO_PORT: "-"}.get(k) or params.INFO[k].unit for k in self.values},
+        """Summary: ``parameters`` name -> {value, start, standard_error, low_2sigma, high_2sigma, unit},
+        plus unit-suffixed fit figures."""
+        units = {k: {TIME_OFFSET: "s", BARO_PORT: "-"}.get(k) or params.INFO[k].unit for k in self.values}
+        par = {k: {"value": float(v), "start": float(self.start[k]), "standard_error": self.standard_errors[k],
+                   "low_2sigma": float(v - 2 * self.standard_errors[k]),
+                   "high_2sigma": float(v + 2 * self.standard_errors[k]), "unit": units[k]}
+               for k, v in self.values.items()}
+        return {"rocket": self.rocket, "log": self.log, "parameters": par,
                 "correlation": {"names": list(self.correlation.columns),
                                 "matrix": self.correlation.values.tolist()},
                 "channels": list(self.channels),
@@ -278,6 +283,11 @@ def calibrate(setup, log: FlightLog, *, parameters: Sequence[str] = DEFAULT_PARA
     se = np.sqrt(np.diag(cov))
     all_names = list(names) + extra
     corr = cov / np.outer(se, se)
+    worst = np.max(np.abs(corr - np.eye(nq))) if nq > 1 else 0.0
+    if worst > 0.999:
+        warnings.warn(f"calibration: parameters correlated at {worst:.4f}: the log cannot separate them "
+                      f"({', '.join(list(names) + extra)}); their values are arbitrary along that direction, "
+                      "fit fewer parameters", stacklevel=2)
     values = dict(zip(all_names, map(float, x)))
     start.update({k: 0.0 for k in extra})
     sim = {c: (v[0],) for c, v in model_values(x, jac=False).items()}

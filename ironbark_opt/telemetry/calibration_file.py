@@ -56,6 +56,8 @@ def write_calibration(calibration, path) -> Path:
            "standard_errors": {k: calibration.standard_errors[k] for k in model},
            "correlation": d["correlation"],
            "fit": {**{k: v for k, v in calibration.values.items() if k not in model},
+                   **{f"{k}_standard_error": calibration.standard_errors[k] for k in calibration.values
+                      if k not in model},
                    **{k: v for k, v in d.items() if k.startswith(("rms_", "noise_")) or k in ("chi2_reduced", "samples")}}}
     if path.suffix.lower() == ".json":
         text = json.dumps(doc, indent=2)
