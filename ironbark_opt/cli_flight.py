@@ -88,14 +88,12 @@ def calibrate_command(rocket, log, log_format, columns, config, table, calibrati
     from ironbark_opt.flight import simulate
     from ironbark_opt.telemetry.calibrate import DEFAULT_PARAMETERS, calibrate
     from ironbark_opt.telemetry.calibration_file import write_calibration
-    import dataclasses
-
     setup, flight_log = _load(rocket, log, log_format, columns, config, table, calibration_path)
     cal = calibrate(setup, flight_log, parameters=names or DEFAULT_PARAMETERS, channels=channels or None,
                     until=until_s, until_fraction=until_fraction, fit_time_offset=not no_time_offset,
                     fit_baro_port=not no_baro_port)
-    before = simulate(setup).apogee_agl
-    after = simulate(dataclasses.replace(setup, nominal={**setup.nominal, **cal.parameter_values()})).apogee_agl
+    before = simulate(setup).apogee_agl                     # same (cached) model as the fit
+    after = simulate(setup, parameters=cal.parameter_values()).apogee_agl
     if output:
         write_calibration(cal, output)
     if plot_path:

@@ -112,12 +112,13 @@ class SampledModel:
         n, nq = t.size, len(self.names)
         return t.ravel(), Y, dt.reshape(n, nq), dY.reshape(len(ROWS), n, nq).transpose(1, 0, 2)
 
-    def at(self, q, times, channels=CHANNELS, *, derivatives: bool = True):
+    def at(self, q, times, channels=CHANNELS, *, derivatives: bool = True, nodes=None):
         """Rows (``ROWS``) at ``times`` [s after ignition]: dict row -> (values (m,), d/dq (m, nq), d/dt (m,)).
 
         Times outside ``[0, t_end]`` are an InputError (the caller trims the log).
+        ``nodes``: the result of :meth:`nodes` at ``q``, to re-sample without re-flying.
         """
-        t, Y, dt, dY = self.nodes(q)
+        t, Y, dt, dY = nodes if nodes is not None else self.nodes(q)
         times = np.asarray(times, dtype=float)
         if times.size and (times.min() < 0 or times.max() > t[-1]):
             raise InputError(f"sample times {times.min():.2f}..{times.max():.2f} s outside the simulated "
