@@ -38,7 +38,6 @@ information with correlated errors; ask for them with ``channels=``.
 """
 from __future__ import annotations
 
-import math
 import warnings
 from dataclasses import dataclass, field
 from typing import Mapping, Sequence

@@ -75,8 +75,6 @@ def read(file: TextFile) -> FlightLog:
             out[ch] = vals
     ok = np.isfinite(out["altitude"])
     out = {c: v[ok] for c, v in out.items()}
-    if "burnout" in events:
-        events.setdefault("burnout", events["burnout"])
     return build_log(file.path, FORMAT, "OpenRocket simulation export", t[ok], out["altitude"],
                      v=out.get("vertical_speed"), a=out.get("acceleration"), events=events,
                      notes=["simulated data (OpenRocket), not a measurement"], line_numbers=numbers)

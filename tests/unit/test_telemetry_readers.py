@@ -203,3 +203,21 @@ def test_noise_estimate_on_known_noise():
     print(f"noise estimate {log.noise('altitude'):.3f} m vs 2.000 m")
     assert log.noise("altitude") == pytest.approx(2.0, rel=0.08)
     assert math.isclose(log.events["liftoff"], 0.0, abs_tol=0.1)
+
+
+@pytest.mark.slow
+def test_copies_are_byte_identical_to_shared_fixtures():
+    """tests/data/telemetry holds the ../shared logs unchanged (the three > 1 MB ones gzipped)."""
+    from pathlib import Path
+    shared = Path("/work/shared/fixtures/telemetry")
+    if not shared.exists():
+        pytest.skip("shared fixtures not mounted")
+    for src in shared.glob("*/*"):
+        if src.name == "README.md" or src.name == "icl-apex1-pnut.ork":
+            continue
+        copy = TEL / src.name
+        data = copy.read_bytes() if copy.exists() else gzip.decompress((TEL / (src.name + ".gz")).read_bytes())
+        assert data == src.read_bytes(), src.name
+        if src.suffix in (".csv", ".pf2", ".txt") and not src.name.endswith(".stats.txt"):
+            assert read_log(src).apogee_agl == pytest.approx(read_log(TEL / (copy.name if copy.exists()
+                                                                             else src.name + ".gz")).apogee_agl)
