@@ -39,11 +39,13 @@ def aero_group():
 
 @aero_group.command("build")
 @click.argument("rocket", type=click.Path(dir_okay=False))
-@click.option("--mach", default="0.05,0.2,0.35,0.5,0.6,0.7,0.8,0.9", show_default=True,
-              help="Mach numbers (comma-separated); add e.g. 1.0,1.2,1.5,1.8,2.2 for a "
-                   "supersonic rocket (0.9 < M < 1.2 is bridged).")
+@click.option("--mach", default=None,
+              help="Mach numbers (comma-separated; default 0.05,0.2,0.35,0.5,0.6,0.7,0.8,0.9,"
+                   "1.2,1.5,2.0). Between the critical Mach number and 1.2 the table is the "
+                   "transonic model (panair.transonic).")
 @click.option("--alpha-deg", default="0,2,4,6,8,12,16,20", show_default=True,
-              help="Total angles of attack [deg] (comma-separated).")
+              help="Angles of attack solved by the panel method [deg] (comma-separated, "
+                   "from 0); 30, 45, 60, 75, 90 deg are added by the high-angle model.")
 @click.option("--out", "out", default=None, type=click.Path(),
               help="Table path stem (default tables/<rocket name>).")
 @click.option("--workers", default=2, show_default=True, help="Parallel processes (Mach).")
@@ -51,41 +53,38 @@ def aero_group():
 @click.option("--panair", "use_panair", is_flag=True,
               help="Solve the supersonic Mach numbers with an external PANAIR (IRONBARK_PANAIR).")
 @click.option("--no-progress", is_flag=True, help="No progress bar.")
+@click.option("--no-resume", is_flag=True,
+              help="Solve every Mach number again instead of reusing the ones a previous "
+                   "(interrupted or failed) build of the same mesh saved next to the table.")
 @json_option
 @handle_errors
-def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress, as_json):
+def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress, no_resume,
+          as_json):
     """Build the AeroTable of ROCKET (a rocket TOML or OpenRocket .ork file)."""
-    from ironbark_opt.aero.base_drag import BaseDrag
-    from ironbark_opt.aero.friction import FrictionDrag
-    from ironbark_opt.aero.model import friction_components
     from ironbark_opt.vehicle import load_rocket_geometry
-    from panair.geometry_adapter import from_rocket, is_symmetric
-    from panair.mesh import MeshOptions
-    from panair.sweep import build_table
+    from panair.rocket_table import default_mach_grid, rocket_table
 
-    mach_v = _floats(mach, "--mach")
-    alpha_v = np.radians(_floats(alpha_deg, "--alpha-deg"))
+    mach_v = default_mach_grid() if mach is None else _floats(mach, "--mach")
+    alpha_v = _floats(alpha_deg, "--alpha-deg")
+    if alpha_v[0] != 0.0:
+        raise InputError("the first angle must be 0 (the zero-lift drag is read there)",
+                         field="--alpha-deg")
     rk, aero_spec = load_rocket_geometry(rocket)
-    geom = from_rocket(rk)
     sref = rk.reference_area()
     lref = 2.0 * rk.reference_radius()
-    # the same friction and base-drag parts as a flight without a table
-    # (ironbark_opt.aero.model.build_aero_model), plus blunt fin trailing edges
-    friction = FrictionDrag(friction_components(rk, aero_spec.surface_roughness), sref,
-                            aero_spec.re_transition)
-    r_base = float(geom.body.r[-1])
-    base = BaseDrag(math.pi * r_base**2, sref,
-                    fin_trailing_edge_area=sum(fs.trailing_edge_base_area() for fs in rk.fin_sets()))
-    table = build_table(geom, mach_v, alpha_v, sref=sref, lref=lref, xref=0.0,
-                        friction=friction, base_drag=base, symmetric=is_symmetric(geom),
-                        options=MeshOptions(refine=refine), workers=workers,
-                        progress=not no_progress and not as_json, use_panair=use_panair,
-                        extra_metadata={"rocket_file": str(rocket)})
     if out is None:
         slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", rk.name).strip("_") or "rocket"
         out = Path("tables") / slug
+    ckpt = None if no_resume else Path(str(out) + ".solved")
+    table = rocket_table(rk, aero_spec, mach_v, alpha_v, refine=refine, workers=workers,
+                         progress=not no_progress and not as_json, use_panair=use_panair,
+                         checkpoint_dir=ckpt, extra_metadata={"rocket_file": str(rocket)})
+    alpha_v = table.alpha                                  # [rad], with the high-angle model
     Path(out).parent.mkdir(parents=True, exist_ok=True)
     csv_path, json_path = table.save(out)
+    if ckpt is not None and ckpt.is_dir():          # built: the per-Mach saves are not needed
+        import shutil
+        shutil.rmtree(ckpt, ignore_errors=True)
     md = table.metadata
     extrapolated = md.get("alpha_deg_extrapolated", {})
     if extrapolated:
@@ -97,6 +96,7 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
               "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
               "mach": mach_v, "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
+              "mach_critical": md.get("mach_critical"),
               "reference_length_m": lref, "moment_reference_x_m": 0.0}
     human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
              f"{md['panels']} panels ({n_sup} supersonic), includes {', '.join(table.includes)}")

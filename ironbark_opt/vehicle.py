@@ -8,6 +8,8 @@ through here.
 """
 from __future__ import annotations
 
+import math
+
 import dataclasses
 from pathlib import Path
 
@@ -84,6 +86,20 @@ def rail_exit_offset(rocket, nozzle_x: float, rule: str) -> float:
     return abs(nozzle_x - (fwd if rule == "forward_button" else aft))
 
 
+def jet_area_of(motor) -> tuple[float, str]:
+    """Area of the base the exhaust fills while the motor burns [m^2], and where it
+    came from: the motor's nozzle exit area when known, else the motor's
+    cross-section, OpenRocket's rule ("subtracting the area of the thrusting
+    motors from the base reference area", Niskanen 2013, sec. 3.4.5)."""
+    if motor.nozzle_exit_area:
+        return float(motor.nozzle_exit_area), "nozzle exit area"
+    d = float(getattr(motor, "diameter", 0.0) or 0.0)
+    if d > 0:
+        return math.pi * d * d / 4.0, ("motor cross-section (nozzle exit area not given; "
+                                       "OpenRocket's rule, Niskanen 2013 sec. 3.4.5)")
+    return 0.0, "none (no nozzle exit area or motor diameter)"
+
+
 def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                     pressure_correction: bool = True) -> FlightSetup:
     """Assemble a :class:`FlightSetup` from a loaded :class:`RocketFile`.
@@ -104,9 +120,10 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
         motor = dataclasses.replace(motor, nozzle_exit_area=None)
     rocket = rf.dry_rocket(motor)
     table = load_aero_table(rf.aero, rocket)
-    jet = motor.nozzle_exit_area or 0.0
+    jet, jet_source = jet_area_of(motor)
     aero = build_aero_model(rocket, table=table, surface_roughness=rf.aero.surface_roughness,
-                            re_transition=rf.aero.re_transition, jet_area=jet)
+                            re_transition=rf.aero.re_transition, jet_area=jet,
+                            jet_area_source=jet_source)
     launch = rf.launch
     if atmosphere is None:
         we, wn = wind_from_speed_direction(launch.wind_speed, launch.wind_from)

@@ -53,7 +53,32 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
         fins.append(FinGeometry(int(fs.count), root, tip, fs.span, sweep, fs.x, fs.thickness,
                                 roll=roll, section=section, le_bevel=sec.le_bevel,
                                 te_bevel=sec.te_bevel, outline=outline))
+    x, r = _continue_past_fins(np.asarray(x, float), np.asarray(r, float), fins)
     return RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name)
+
+
+#: Length of the body continued behind fins that reach the base [root chords]
+FIN_BASE_GAP = 0.02
+
+
+def _continue_past_fins(x, r, fins):
+    """Fins whose trailing edge reaches (or passes) the base: the panel body is
+    continued as a cylinder of the base radius to :data:`FIN_BASE_GAP` root
+    chords behind the aft-most fin root trailing edge, so the base wake leaves
+    the body behind the fins (a fin root needs a body under it, and a base
+    wake cannot start on a fin's trailing edge).  The added cylinder is
+    parallel to the axis: no axial pressure force; the base and its drag
+    are unchanged (same radius)."""
+    if not fins:
+        return x, r
+    end = max(f.x_root + f.root_chord for f in fins)
+    chord = max(f.root_chord for f in fins)
+    if end < x[-1] - FIN_BASE_GAP * chord:
+        return x, r
+    x_new = end + FIN_BASE_GAP * chord
+    if x_new <= x[-1] * (1 + 1e-9):
+        return x, r
+    return np.append(x, x_new), np.append(r, r[-1])
 
 
 def is_symmetric(geom: RocketGeometry) -> bool:

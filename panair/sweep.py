@@ -122,10 +122,21 @@ def _solve_one(args):
     potential-flow shape sin(2 alpha) cos(alpha/2) (same centre of pressure)
     and CA held; the angles are returned so the table records them.  A failure
     at or below a solved angle is raised."""
-    panels, mach, alphas, sref, lref, xref, rule = args
-    solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule)
+    panels, mach, alphas, sref, lref, xref, rule = args[:7]
+    body_mask = args[7] if len(args) > 7 else None
     try:
-        return mach, np.array([[r.CA, r.CN, r.Cm] for r in solver.solve(alphas)]), []
+        solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule)
+    except SolverError:
+        if mach < MACH_SUPERSONIC_MIN:
+            raise
+        return _local_inclination(panels, mach, alphas, sref, lref, xref)
+    try:
+        res = solver.solve(alphas)
+        cp_min = None
+        if body_mask is not None and np.any(body_mask) and abs(alphas[0]) < 1e-12:
+            # incompressible minimum Cp on the body (Prandtl-Glauert factor removed)
+            cp_min = float(np.min(res[0].cp[body_mask])) * math.sqrt(1.0 - mach * mach)
+        return mach, np.array([[r.CA, r.CN, r.Cm] for r in res]), [], cp_min, "linear"
     except SolverError:
         if mach < MACH_SUPERSONIC_MIN:
             raise
@@ -135,6 +146,8 @@ def _solve_one(args):
             r = solver.solve(a)[0]
         except SolverError:
             if not rows or abs(_jorgensen_potential(alphas[i - 1])) < 1e-12:
+                if not rows:          # linear theory cannot solve this Mach number at all
+                    return _local_inclination(panels, mach, alphas, sref, lref, xref)
                 raise
             break
         rows.append([r.CA, r.CN, r.Cm])
@@ -142,7 +155,15 @@ def _solve_one(args):
     extra = [float(a) for a in alphas[len(rows):]]      # the first failure and all above it
     rows += [[ca0, cn0 * _jorgensen_potential(a) / g0, cm0 * _jorgensen_potential(a) / g0]
              for a in extra]
-    return mach, np.array(rows), extra
+    return mach, np.array(rows), extra, None, "linear"
+
+
+def _local_inclination(panels, mach, alphas, sref, lref, xref):
+    """The fallback of a supersonic Mach number linear theory cannot solve
+    (:mod:`panair.solver.local_inclination`)."""
+    from .solver.local_inclination import LocalInclinationSolver
+    res = LocalInclinationSolver(panels, mach, sref=sref, lref=lref, xref=xref).solve(alphas)
+    return mach, np.array([[r.CA, r.CN, r.Cm] for r in res]), [], None, "local-inclination"
 
 
 def _panair_one(nets, mach, alphas, sref, lref, xref, symmetric, workdir):
@@ -156,10 +177,63 @@ def _panair_one(nets, mach, alphas, sref, lref, xref, symmetric, workdir):
     return np.array(rows)
 
 
+class _Checkpoint:
+    """Per-Mach results on disk (``checkpoint_dir``), so a failed or interrupted
+    build keeps what it solved.  One ``.npz`` per Mach number, named by a hash of
+    everything the solution depends on; written atomically."""
+
+    def __init__(self, folder, nets, nets_sup, alpha, rule, use_panair):
+        self.folder = None
+        if folder is None:
+            return
+        from pathlib import Path
+        self.folder = Path(folder)
+        h = hashlib.sha256()
+        for group in (nets, nets_sup):
+            for n in group:
+                h.update(n.name.encode())
+                h.update(np.ascontiguousarray(np.round(n.points, 12)).tobytes())
+                for k, v in sorted(n.meta.items()) if getattr(n, "meta", None) else ():
+                    h.update(k.encode())
+                    h.update(np.ascontiguousarray(v).tobytes())
+        h.update(np.ascontiguousarray(np.round(alpha, 12)).tobytes())
+        h.update(f"{rule}|{use_panair}|{CHECKPOINT_VERSION}".encode())
+        self.key = h.hexdigest()[:20]
+
+    def _path(self, mach):
+        return self.folder / f"{self.key}_M{mach:.6f}.npz"
+
+    def load(self, mach):
+        if self.folder is None or not self._path(mach).is_file():
+            return None
+        try:
+            with np.load(self._path(mach)) as z:
+                cpm = float(z["cp_min"]) if np.isfinite(z["cp_min"]) else None
+                return (np.array(z["coefficients"]), [float(a) for a in z["extrapolated"]], cpm,
+                        str(z["method"]))
+        except (OSError, ValueError, KeyError):
+            return None                   # a damaged file is solved again
+
+    def save(self, mach, arr, extra, cpm, how):
+        if self.folder is None:
+            return
+        import os
+        self.folder.mkdir(parents=True, exist_ok=True)
+        tmp = self._path(mach).with_suffix(".tmp.npz")
+        np.savez(tmp, coefficients=arr, extrapolated=np.asarray(extra, float),
+                 cp_min=np.nan if cpm is None else cpm, method=np.array(how))
+        os.replace(tmp, self._path(mach))
+
+
+#: bump when the solver's numbers change, so old checkpoints are not reused
+CHECKPOINT_VERSION = 2
+
+
 def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float,
                    xref: float, symmetric: bool = True, options: MeshOptions | None = None,
                    pressure_rule: str = "second-order", workers: int = 2, progress: bool = True,
-                   use_panair: bool = False, panair_workdir=None, executor=None):
+                   use_panair: bool = False, panair_workdir=None, executor=None,
+                   checkpoint_dir=None):
     """Pressure CA, CN, Cm on a Mach x alpha grid.
 
     Parameters
@@ -181,6 +255,10 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     use_panair : bool
         Solve the supersonic Mach numbers with an external PANAIR instead.
     panair_workdir : path, optional
+    checkpoint_dir : path, optional
+        Every Mach number is saved there as soon as it is solved (keyed by the
+        mesh, the angles, the pressure rule and the Mach number) and a rerun
+        (e.g. after an interrupted or partly failed build) reuses it.
 
     Returns
     -------
@@ -220,8 +298,24 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     external = sup if use_panair else np.zeros(0)
     results: dict[float, np.ndarray] = {}
     extrapolated: dict[float, list] = {}
+    cp_min: dict[float, float] = {}
+    method: dict[float, str] = {}
+    ckpt = _Checkpoint(checkpoint_dir, nets, nets_sup, alpha, pressure_rule, use_panair)
+    for m in list(builtin) + list(external):
+        hit = ckpt.load(float(m))
+        if hit is not None:
+            results[float(m)], extrapolated[float(m)], cp_min[float(m)], method[float(m)] = hit
+    builtin_all = builtin
+    builtin = np.array([m for m in builtin if float(m) not in results])
+    external_all = external
+    external = np.array([m for m in external if float(m) not in results])
+    body_mask = None
+    if panels is not None:
+        body_ids = [k for k, n in enumerate(nets) if n.name == "body"]
+        body_mask = np.isin(panels.network, body_ids) & panels.integrate
     jobs = [(panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
-             xref, pressure_rule) for m in builtin]
+             xref, pressure_rule, None if m >= MACH_SUPERSONIC_MIN else body_mask)
+            for m in builtin]
     bar = None
     if progress:
         from tqdm import tqdm
@@ -232,23 +326,28 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             with use_executor(executor) as ex:
                 done = run_chunks(ex, _solve_one, [(job,) for job in jobs], label="panel",
                                   on_chunk=lambda i, k: bar.update() if bar else None)
-            for m, arr, extra in done:
-                results[m], extrapolated[m] = arr, extra
+            for m, arr, extra, cpm, how in done:
+                results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
+                ckpt.save(m, arr, extra, cpm, how)
         elif workers > 1 and len(jobs) > 1:
             with ProcessPoolExecutor(max_workers=workers) as pool:
-                for m, arr, extra in pool.map(_solve_one, jobs):
-                    results[m], extrapolated[m] = arr, extra
+                for m, arr, extra, cpm, how in pool.map(_solve_one, jobs):
+                    results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
+                    ckpt.save(m, arr, extra, cpm, how)
                     if bar:
                         bar.update()
         else:
             for job in jobs:
-                m, arr, extra = _solve_one(job)
-                results[m], extrapolated[m] = arr, extra
+                m, arr, extra, cpm, how = _solve_one(job)
+                results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
+                ckpt.save(m, arr, extra, cpm, how)
                 if bar:
                     bar.update()
         for m in external:
             results[float(m)] = _panair_one(nets_sup, float(m), alpha, sref, lref, xref, symmetric,
                                             panair_workdir)
+            extrapolated[float(m)], cp_min[float(m)], method[float(m)] = [], None, "panair"
+            ckpt.save(float(m), results[float(m)], [], None, "panair")
             if bar:
                 bar.update()
     finally:
@@ -256,7 +355,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             bar.close()
     # blunt fin leading edges: meshed as wedges without axial force where linear
     # theory cannot solve them (supersonic meshes); their drag is Niskanen's
-    sharpened = [float(m) for m in builtin if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0
+    sharpened = [float(m) for m in builtin_all if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0
                  and any(f.section in ("square", "rounded") for f in geometry.fins)]
     for m in sharpened:
         results[m] = results[m].copy()
@@ -272,15 +371,38 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     first = panels if panels is not None else panels_sup
     info = {"panels": int(first.n), "wake_panels": int(len(first.wake_corners)),
             "panels_supersonic": int(panels_sup.n) if panels_sup is not None else 0,
-            "mach_solved_builtin": [float(m) for m in builtin],
-            "mach_solved_panair": [float(m) for m in external],
+            "mach_solved_builtin": [float(m) for m in builtin_all],
+            "mach_solved_panair": [float(m) for m in external_all],
             "mach_bridged": [float(m) for m in gap],
             "geometry_hash": digest.hexdigest()[:16], "symmetric": bool(symmetric),
             "mach_blunt_le_model": sharpened,
             "alpha_deg_extrapolated": {f"{m:g}": [round(math.degrees(a), 6) for a in extra]
                                        for m, extra in sorted(extrapolated.items()) if extra},
-            "pressure_rule": pressure_rule}
+            "pressure_rule": pressure_rule,
+            "mach_local_inclination": sorted(m for m, how in method.items()
+                                             if how == "local-inclination"),
+            "body_cp_min_incompressible": next((cp_min[m] for m in sorted(cp_min)
+                                                if cp_min[m] is not None), None)}
     return coeffs, info
+
+
+#: Angles of attack [deg] above a sweep's largest, filled by the high-angle model
+ALPHA_EXTEND_DEG = (30.0, 45.0, 60.0, 75.0, 90.0)
+
+
+def _extend_alpha(values, alpha, alpha_ext, kind):
+    """Continue (n_mach, n_alpha) coefficients of the potential solution past its largest
+    angle: CN, Cm with Jorgensen's potential-flow shape sin(2 alpha) cos(alpha/2) (NASA
+    TR R-474, eq. 1; same centre of pressure), CA with cos^2 alpha (the axial part of the
+    same decomposition, Jorgensen eq. 2: CA = CA(0) cos^2 alpha)."""
+    last = values[:, -1:]
+    a0 = alpha[-1]
+    if kind == "CA":
+        return np.hstack([values, last * (np.cos(alpha_ext) ** 2 / math.cos(a0) ** 2)[None, :]])
+    g0 = _jorgensen_potential(a0)
+    if abs(g0) < 1e-12:
+        return np.hstack([values, np.zeros((values.shape[0], len(alpha_ext)))])
+    return np.hstack([values, last * (_jorgensen_potential(alpha_ext) / g0)[None, :]])
 
 
 def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float, xref: float,
@@ -288,38 +410,85 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                 options: MeshOptions | None = None, workers: int = 2, progress: bool = True,
                 use_panair: bool = False, pressure_rule: str = "second-order",
                 extra_metadata: dict | None = None, executor=None,
-                crossflow_k: float = BODY_LIFT_K):
-    """Sweep -> AeroTable with the viscous and base parts added.
+                crossflow_k: float = BODY_LIFT_K, subsonic_pressure=None,
+                friction_in_table: bool = False, alpha_extend_deg=ALPHA_EXTEND_DEG,
+                checkpoint_dir=None):
+    """Sweep -> AeroTable with the transonic, separated-flow, viscous and base parts.
 
     Parameters
     ----------
     geometry : RocketGeometry [m]
-    mach : 1-D array [-]; alpha : 1-D array [rad]
+    mach : 1-D array [-]; alpha : 1-D array [rad], starting at 0
     sref : float [m^2]; lref : float [m]; xref : float [m]
     friction : ironbark_opt.aero.friction.FrictionDrag, optional
-        Evaluated at the sea-level unit Reynolds number of each Mach number.
+        Tabulated as ``CA_friction`` at the sea-level unit Reynolds number of each
+        Mach number for reference; part of ``CA`` only with ``friction_in_table``
+        (otherwise the flight adds friction at its own Reynolds number).
     base_drag : ironbark_opt.aero.base_drag.BaseDrag, optional
     symmetric, options, workers, progress, use_panair, pressure_rule, executor
         As in :func:`sweep_pressure`.
     extra_metadata : dict, optional
     crossflow_k : float [-]
         Viscous cross-flow coefficient eta Cdc of the body (0: none).
+    subsonic_pressure : callable mach -> CA [-], optional
+        Zero-lift pressure drag below the critical Mach number (separated flow and
+        edges, e.g. :func:`ironbark_opt.aero.empirical_drag.separated_pressure_ca`);
+        None: 0 (d'Alembert).  See :mod:`panair.transonic`.
+    friction_in_table : bool
+        Add friction to ``CA`` (a table for a tool that has no friction model).
+    alpha_extend_deg : sequence of float [deg]
+        Angles above the largest of ``alpha`` added by the high-angle model
+        (:func:`_extend_alpha` plus the viscous cross-flow), up to 90 deg.
+    checkpoint_dir : path, optional
+        Each solved Mach number is saved there and reused by a rerun
+        (:func:`sweep_pressure`).
 
     Returns
     -------
-    ironbark_opt.aero.table.AeroTable with CA (total), CA_power_on, CN, Cm
-    (totals), CA_pressure, CA_friction, CA_base, CN_pressure, Cm_pressure,
-    CN_crossflow, Cm_crossflow.
+    ironbark_opt.aero.table.AeroTable with CA (pressure + base [+ friction]),
+    CA_power_on, CN, Cm (totals), CA_pressure, CA_pressure_linear (the panel
+    solution before the zero-lift model), CA_friction, CA_base, CN_pressure,
+    Cm_pressure, CN_crossflow, Cm_crossflow.
     """
     from ironbark_opt import __version__
     from ironbark_opt.aero.table import AeroTable
+    from .transonic import body_critical_mach, fin_critical_mach, zero_lift_pressure
     if not (math.isfinite(crossflow_k) and crossflow_k >= 0):
         raise InputError(f"crossflow_k must be >= 0, got {crossflow_k}", field="crossflow_k")
+    alpha = np.asarray(alpha, float)
+    if len(alpha) == 0 or abs(alpha[0]) > 1e-12:
+        raise InputError("the angle-of-attack grid must start at 0 (the zero-lift drag is "
+                         "read there)", field="alpha")
     coeffs, info = sweep_pressure(geometry, mach, alpha, sref=sref, lref=lref, xref=xref,
                                   symmetric=symmetric, options=options, workers=workers,
                                   progress=progress, use_panair=use_panair,
-                                  pressure_rule=pressure_rule, executor=executor)
+                                  pressure_rule=pressure_rule, executor=executor,
+                                  checkpoint_dir=checkpoint_dir)
     mach = np.asarray(mach, float)
+    # ---- zero-lift pressure drag: subsonic separated flow, critical Mach, transonic rise
+    ca_lin = coeffs["CA"]
+    d_ca = ca_lin - ca_lin[:, :1]                       # angle-of-attack increments (panel)
+    cp_min = info.get("body_cp_min_incompressible")
+    m_cr_body = body_critical_mach(cp_min) if cp_min is not None else 0.95
+    m_cr_fins = [fin_critical_mach(f) for f in geometry.fins]
+    m_cr = float(min([m_cr_body] + m_cr_fins))
+    sub_fn = subsonic_pressure if subsonic_pressure is not None else (lambda m: 0.0 * np.asarray(m))
+    solved_sup = sorted(m for m in info["mach_solved_builtin"] + info["mach_solved_panair"]
+                        if m >= MACH_SUPERSONIC_MIN)
+    m_sup = np.array(solved_sup)
+    p_sup = np.array([ca_lin[int(np.argmin(np.abs(mach - m))), 0] for m in solved_sup])
+    anchor_solved = []
+    if np.any(mach > m_cr) and not len(m_sup):
+        # a supersonic anchor for the transonic rise although the grid has none
+        m_anchor = float(MACH_SUPERSONIC_MIN)
+        c1, i1 = sweep_pressure(geometry, [m_anchor], np.zeros(1), sref=sref, lref=lref,
+                                xref=xref, symmetric=symmetric, options=options, workers=1,
+                                progress=False, use_panair=use_panair,
+                                pressure_rule=pressure_rule, checkpoint_dir=checkpoint_dir)
+        m_sup, p_sup = np.array([m_anchor]), np.array([float(c1["CA"][0, 0])])
+        anchor_solved = [m_anchor]
+    p0 = zero_lift_pressure(mach, m_cr, sub_fn, m_sup, p_sup)
+    ca_p = p0[:, None] + d_ca
     n_a = len(alpha)
     ones = np.ones((1, n_a))
     includes = ["pressure"]
@@ -327,42 +496,73 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     if friction is not None:
         re = np.maximum(mach, 1e-3) * SEA_LEVEL_RE_PER_M_PER_MACH
         ca_f = np.asarray(friction.CA(mach, re), float)
-        includes.append("friction")
+        if friction_in_table:
+            includes.append("friction")
     ca_b = np.zeros(len(mach))
     ca_b_on = np.zeros(len(mach))
     if base_drag is not None:
         ca_b = np.asarray(base_drag.CA_power_off(mach), float)
         ca_b_on = np.asarray(base_drag.CA_power_on(mach), float)
         includes.append("base")
+    bad = p0 + ca_b < -1e-9
+    if np.any(bad):
+        raise SolverError("zero-lift pressure plus base drag is negative (a thrust) at Mach "
+                          + ", ".join(f"{m:g} ({v:+.4f})" for m, v in zip(mach[bad], (p0 + ca_b)[bad]))
+                          + ": the panel solution is not physical for this geometry")
+    # ---- angles of attack past the sweep: high-angle model up to 90 deg
+    ext = np.radians([a for a in alpha_extend_deg if a > math.degrees(alpha[-1]) + 1e-9])
+    cn_p, cm_p = coeffs["CN"], coeffs["Cm"]
+    if len(ext):
+        ca_lin = _extend_alpha(ca_lin, alpha, ext, "CA")
+        ca_p = _extend_alpha(ca_p, alpha, ext, "CA")
+        cn_p = _extend_alpha(cn_p, alpha, ext, "CN")
+        cm_p = _extend_alpha(cm_p, alpha, ext, "Cm")
+        alpha = np.concatenate([alpha, ext])
+        n_a = len(alpha)
+        ones = np.ones((1, n_a))
     cn_x = np.zeros((len(mach), n_a))
     cm_x = np.zeros((len(mach), n_a))
     if crossflow_k > 0:
         a_plan, x_plan = body_planform(geometry.body)
-        cn_a, _ = body_lift(np.asarray(alpha, float), a_plan, x_plan, sref, k=crossflow_k)
+        cn_a, _ = body_lift(alpha, a_plan, x_plan, sref, k=crossflow_k)
         cn_x = np.ones((len(mach), 1)) * np.asarray(cn_a)[None, :]
         cm_x = -cn_x * (x_plan - xref) / lref
         includes.append("crossflow")
-    ca_p = coeffs["CA"]
-    table = {"CA": ca_p + ca_f[:, None] * ones + ca_b[:, None] * ones,
-             "CA_power_on": ca_p + ca_f[:, None] * ones + ca_b_on[:, None] * ones,
-             "CN": coeffs["CN"] + cn_x, "Cm": coeffs["Cm"] + cm_x, "CA_pressure": ca_p,
+    f_in = ca_f[:, None] * ones if friction_in_table else 0.0 * ones
+    table = {"CA": ca_p + f_in + ca_b[:, None] * ones,
+             "CA_power_on": ca_p + f_in + ca_b_on[:, None] * ones,
+             "CN": cn_p + cn_x, "Cm": cm_p + cm_x, "CA_pressure": ca_p,
+             "CA_pressure_linear": ca_lin,
              "CA_friction": ca_f[:, None] * ones, "CA_base": ca_b[:, None] * ones,
-             "CN_pressure": coeffs["CN"], "Cm_pressure": coeffs["Cm"],
+             "CN_pressure": cn_p, "Cm_pressure": cm_p,
              "CN_crossflow": cn_x, "Cm_crossflow": cm_x}
     meta = {"generator": "ironbark panair.sweep (built-in panel solver)",
             "version": __version__, "name": geometry.name, "body_axes": "x aft, z up; "
             "alpha = total angle of attack (polar aeroballistic)",
             "transonic_bridge": bool(info["mach_bridged"]),
-            "transonic_bridge_model": "monotone cubic Hermite (Fritsch & Carlson 1980)",
-            "friction_reynolds": "sea-level ISA unit Reynolds number at each Mach",
+            "transonic_bridge_model": "angle-of-attack increments: monotone cubic Hermite "
+                                      "(Fritsch & Carlson 1980)",
+            "zero_lift_pressure_model": "panair.transonic: subsonic separated-flow and edge drag "
+                                        "(Niskanen 2013 eq. 3.81/3.88/3.89) below the critical "
+                                        "Mach number, monotone rise to the sonic (area-rule) "
+                                        "value, supersonic panel solutions above",
+            "mach_critical": m_cr, "mach_critical_body": m_cr_body,
+            "mach_critical_fins": m_cr_fins, "mach_sonic_anchor_solved": anchor_solved,
+            "friction_reynolds": ("sea-level ISA unit Reynolds number at each Mach (in CA)"
+                                  if friction_in_table else
+                                  "not in CA: the flight adds friction at its own Reynolds "
+                                  "number; CA_friction is the sea-level value for reference"),
             **({"base_drag_model": getattr(base_drag, "model", type(base_drag).__name__),
                 "base_jet_area_m2": float(getattr(base_drag, "jet_area", 0.0))}
                if base_drag is not None else {}),
             "crossflow_model": (f"viscous cross-flow, Allen & Perkins (NACA TR 1048): CN = K "
                                 f"(A_plan/A_ref) sin^2 alpha at the planform centroid, K = "
                                 f"{crossflow_k:g}"),
+            "alpha_deg_high_angle_model": [round(math.degrees(a), 6) for a in ext],
+            "high_angle_model": "potential part continued with Jorgensen's shape sin 2a cos(a/2), "
+                                "CA with cos^2 a (NASA TR R-474 eq. 1-2), plus the cross-flow",
             **info, **(extra_metadata or {})}
     json.dumps(meta)   # must be serialisable
-    return AeroTable(mach, np.asarray(alpha, float), table, reference_area=sref,
+    return AeroTable(mach, alpha, table, reference_area=sref,
                      reference_length=lref, moment_reference_x=xref, includes=tuple(includes),
                      metadata=meta)

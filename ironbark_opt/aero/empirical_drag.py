@@ -70,8 +70,19 @@ def _joint_half_angle(comp) -> float:
     return float(np.arctan(abs(r[-1] - r[-2]) / (x[-1] - x[-2])))
 
 
-def pressure_ca(rocket, mach) -> np.ndarray:
-    """Pressure-drag CA [-] on the rocket's reference area vs Mach (numeric-only)."""
+def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.ndarray:
+    """Zero-lift pressure drag a potential-flow solution cannot have [-] on the
+    rocket's reference area vs Mach (numeric-only): blunt nose joints (eq. 3.81),
+    boattails and other contracting transitions as separated flow with
+    base-like pressure on the annulus (eq. 3.88), fin leading edges (eq. 3.87,
+    3.89).  Fin trailing edges are base drag (:class:`~ironbark_opt.aero.base_drag.BaseDrag`).
+
+    ``streamlined_edges=False`` leaves out the leading-edge drag of streamlined
+    (rounded, airfoil, bevelled) edges, keeping only square (separated) ones: below
+    the critical Mach number their flow is attached and subcritical, so they have no
+    pressure drag (d'Alembert); eq. 3.89's rise stands for their compressibility
+    drag, which the panel tables take from the critical-Mach model instead
+    (:mod:`panair.transonic`)."""
     m = np.asarray(mach, dtype=float)
     a_ref = rocket.reference_area()
     ca = np.zeros_like(m)
@@ -82,16 +93,35 @@ def pressure_ca(rocket, mach) -> np.ndarray:
             sub = 0.8 * np.sin(phi) ** 2 * comp.radius ** 2 * np.pi / a_ref
             ca += np.where(m < 1.0, sub, sub * q)
         elif isinstance(comp, Transition) and comp.aft_radius < comp.fore_radius:
-            d1, d2 = 2 * comp.fore_radius, 2 * comp.aft_radius
-            gamma = comp.length / (d1 - d2)
-            k = 1.0 if gamma < 1 else ((3.0 - gamma) / 2.0 if gamma < 3 else 0.0)
-            area = np.pi * (comp.fore_radius ** 2 - comp.aft_radius ** 2)
-            ca += k * np.asarray(cd_base(m), dtype=float) * area / a_ref
+            ca += boattail_separation_fraction(comp) * np.asarray(cd_base(m), dtype=float) \
+                * np.pi * (comp.fore_radius ** 2 - comp.aft_radius ** 2) / a_ref
     for fins in rocket.fin_sets():
+        if not streamlined_edges and fins.section.kind != "square":
+            continue
         frontal = fins.thickness * fins.span * fins.count / a_ref
         sweep = np.arctan2(fins.sweep_length, fins.span)
         ca += leading_edge_cd(m, fins.section.kind) * np.cos(sweep) ** 2 * frontal
-        ca += np.asarray(cd_base(m), dtype=float) * fins.trailing_edge_base_area() / a_ref
+    return ca
+
+
+def boattail_separation_fraction(transition) -> float:
+    """Fraction [-] of a contracting transition's annulus that carries base
+    pressure (Niskanen 2013, eq. 3.88): 1 for gamma < 1, (3 - gamma)/2 for
+    1 <= gamma <= 3, 0 above, gamma = length / (fore diameter - aft diameter)."""
+    d1, d2 = 2 * transition.fore_radius, 2 * transition.aft_radius
+    if d2 >= d1:
+        return 0.0
+    gamma = transition.length / (d1 - d2)
+    return 1.0 if gamma < 1 else ((3.0 - gamma) / 2.0 if gamma < 3 else 0.0)
+
+
+def pressure_ca(rocket, mach) -> np.ndarray:
+    """Pressure-drag CA [-] on the rocket's reference area vs Mach (numeric-only):
+    :func:`separated_pressure_ca` plus blunt fin trailing edges (eq. 3.94)."""
+    m = np.asarray(mach, dtype=float)
+    ca = separated_pressure_ca(rocket, m)
+    for fins in rocket.fin_sets():
+        ca += np.asarray(cd_base(m), dtype=float) * fins.trailing_edge_base_area() / rocket.reference_area()
     return ca
 
 

@@ -98,6 +98,7 @@ class AeroModel:
     body_lift_k: float = barrowman.BODY_LIFT_K
     includes: tuple = field(default=())
     jet_relief: BaseDrag | None = None
+    jet_area_source: str = ""
 
     # -- tabulated geometry sums (speed) ----------------------------------------
     def _sums_exact(self, mach):
@@ -262,7 +263,7 @@ def friction_components(rocket, roughness: float) -> list[FrictionComponent]:
 
 
 def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re_transition: float = 5e5,
-                     jet_area: float = 0.0) -> AeroModel:
+                     jet_area: float = 0.0, jet_area_source: str = "") -> AeroModel:
     """Assemble the model of ``rocket`` (numeric-only; the result is symbolic-safe).
 
     Parameters
@@ -274,6 +275,8 @@ def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re
     re_transition : float [-]
     jet_area : float [m^2]
         Nozzle exit area filling the base while the motor burns.
+    jet_area_source : str
+        Where ``jet_area`` came from (kept on the model for reports).
     """
     if table is None or not table.has("CA"):
         raise InputError("no axial-force data: give drag curves ([aero] drag_power_off) or an aerodynamic "
@@ -284,17 +287,19 @@ def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re
         raise InputError(f"table reference area {table.reference_area:.6g} m^2 differs from the rocket's "
                          f"{aref:.6g} m^2", field="aero.table")
     includes = tuple(table.includes)
+    r_base = float(rocket.radius_at(rocket.length()))
+    jet_area = min(float(jet_area), math.pi * r_base ** 2)     # the jet cannot fill more than the base
     friction = None
     if "friction" not in includes:
         friction = FrictionDrag(friction_components(rocket, surface_roughness), aref, re_transition)
     base = None
     jet_relief = None
     if "base" not in includes:
-        r_base = float(rocket.radius_at(rocket.length()))
         base = BaseDrag(math.pi * r_base ** 2, aref, jet_area)
     elif jet_area > 0 and table.metadata.get("base_jet_area_m2") == 0.0:
         # a panel table's base drag was built without a jet (the motor is not part of the
         # geometry): the exhaust's share of the base is taken off while the motor burns
         jet_relief = BaseDrag(jet_area, aref, model=table.metadata.get("base_drag_model", "mccoy"))
     return AeroModel(aref, dref, float(table.moment_reference_x), lift_geometry(rocket), table,
-                     friction, base, includes=includes, jet_relief=jet_relief)
+                     friction, base, includes=includes, jet_relief=jet_relief,
+                     jet_area_source=jet_area_source)

@@ -83,13 +83,26 @@ def test_build_table_totals(tmp_path):
     fr = FrictionDrag([FrictionComponent.body("body", 0.3, 0.03)], sref)
     bd = BaseDrag(sref, sref)
     t = build_table(_bf(), [0.3, 0.6], np.radians([0.0, 4.0]), sref=sref, lref=0.03, xref=0.15,
-                    friction=fr, base_drag=bd, options=COARSE, workers=1, progress=False)
-    total = t.values("CA")
-    parts = t.values("CA_pressure") + t.values("CA_friction") + t.values("CA_base")
-    np.testing.assert_allclose(total, parts, rtol=1e-12)
+                    friction=fr, base_drag=bd, options=COARSE, workers=1, progress=False,
+                    alpha_extend_deg=())
+    # friction is tabulated for reference but flown at the flight's own Reynolds number
+    np.testing.assert_allclose(t.values("CA"), t.values("CA_pressure") + t.values("CA_base"),
+                               rtol=1e-12)
+    assert "friction" not in t.includes and t.values("CA_friction")[0, 0] > 0.05
+    # zero-lift pressure drag below the critical Mach number: d'Alembert (0, no separated
+    # parts given); the angle-of-attack increment is the panel solution's
+    np.testing.assert_allclose(t.values("CA_pressure")[:, 0], 0.0, atol=1e-15)
+    lin = t.values("CA_pressure_linear")
+    np.testing.assert_allclose(t.values("CA_pressure")[:, 1], lin[:, 1] - lin[:, 0], rtol=1e-12)
+    t_f = build_table(_bf(), [0.3, 0.6], np.radians([0.0, 4.0]), sref=sref, lref=0.03,
+                      xref=0.15, friction=fr, base_drag=bd, options=COARSE, workers=1,
+                      progress=False, alpha_extend_deg=(), friction_in_table=True)
+    np.testing.assert_allclose(t_f.values("CA"), t.values("CA") + t.values("CA_friction"),
+                               rtol=1e-12)
+    assert "friction" in t_f.includes
     # base drag part: Niskanen eq. 3.94 on the full base (= Sref here)
     np.testing.assert_allclose(t.values("CA_base")[:, 0], 0.12 + 0.13 * np.array([0.3, 0.6])**2)
-    assert set(t.includes) == {"pressure", "friction", "base", "crossflow"}
+    assert set(t.includes) == {"pressure", "base", "crossflow"}
     # CN, Cm = pressure + viscous cross-flow (Allen & Perkins, K = 1.1) at the planform
     # centroid; Basic Finner body: cone 2.84 cal (triangle) + cylinder 7.16 cal, d = 0.03 m
     a_plan = (0.5 * 2.84 + 7.16) * 0.03**2
@@ -105,6 +118,39 @@ def test_build_table_totals(tmp_path):
     assert all(p.exists() for p in paths)
 
 
+def test_high_angle_extension_to_90_deg():
+    """Angles past the sweep: Jorgensen's potential shape sin 2a cos(a/2) for the panel
+    part (same CP), CA ~ cos^2 a (NASA TR R-474 eq. 1-2), plus the cross-flow."""
+    t = build_table(_bf(), [0.3], np.radians([0.0, 4.0, 8.0]), sref=1e-3, lref=0.03, xref=0.15,
+                    options=COARSE, workers=1, progress=False)
+    a = t.alpha
+    assert np.degrees(a[-1]) == pytest.approx(90.0) and len(a) == 3 + 5
+    g = np.sin(2 * a) * np.cos(a / 2)
+    cn = t.values("CN_pressure")[0]
+    np.testing.assert_allclose(cn[3:], cn[2] * g[3:] / g[2], rtol=1e-12)
+    assert abs(cn[-1]) < 1e-12                        # potential part vanishes broadside
+    assert t.values("CN")[0, -1] > t.values("CN")[0, 2]     # cross-flow carries the load
+    xcp = t.values("Cm_pressure")[0, 3:-1] / cn[3:-1]
+    np.testing.assert_allclose(xcp, t.values("Cm_pressure")[0, 2] / cn[2], rtol=1e-12)
+    assert t.metadata["alpha_deg_high_angle_model"] == [30.0, 45.0, 60.0, 75.0, 90.0]
+
+
+def test_checkpoint_resumes_solved_mach_numbers(tmp_path, monkeypatch):
+    """Every Mach number is saved as it is solved; a rerun solves only what is missing."""
+    import panair.sweep as sw
+    g = _bf()
+    c1, _ = sweep_pressure(g, [0.3, 0.6], [0.0], sref=1e-3, lref=0.03, xref=0.15,
+                           options=COARSE, workers=1, progress=False, checkpoint_dir=tmp_path)
+    assert len(list(tmp_path.glob("*.npz"))) == 2
+    calls = []
+    real = sw._solve_one
+    monkeypatch.setattr(sw, "_solve_one", lambda args: calls.append(args[1]) or real(args))
+    c2, _ = sweep_pressure(g, [0.3, 0.6, 0.7], [0.0], sref=1e-3, lref=0.03, xref=0.15,
+                           options=COARSE, workers=1, progress=False, checkpoint_dir=tmp_path)
+    assert calls == [0.7]
+    np.testing.assert_array_equal(c2["CA"][:2], c1["CA"])
+
+
 def test_body_planform_is_exact_for_a_cone_cylinder():
     from panair.sweep import body_planform
     area, xc = body_planform(_bf().body)
@@ -115,7 +161,8 @@ def test_body_planform_is_exact_for_a_cone_cylinder():
 
 def test_crossflow_k_is_validated_and_can_be_off():
     t = build_table(_bf(), [0.3], np.radians([0.0, 4.0]), sref=1e-3, lref=0.03, xref=0.15,
-                    options=COARSE, workers=1, progress=False, crossflow_k=0.0)
+                    options=COARSE, workers=1, progress=False, crossflow_k=0.0,
+                    alpha_extend_deg=())
     np.testing.assert_array_equal(t.values("CN"), t.values("CN_pressure"))
     assert "crossflow" not in t.includes
     with pytest.raises(InputError, match="crossflow_k"):
@@ -199,3 +246,25 @@ def test_unsolvable_large_supersonic_angles_are_continued_and_recorded(tmp_path)
     cn, cm, ca = (t.values(k)[1] for k in ("CN_pressure", "Cm_pressure", "CA_pressure"))
     assert cn[4] == pytest.approx(cn[3] * g(alpha[4]) / g(alpha[3]), rel=1e-12)
     assert cm[4] / cn[4] == pytest.approx(cm[3] / cn[3], rel=1e-12) and ca[4] == ca[3]
+
+
+def test_local_inclination_fallback_on_a_superinclined_cone():
+    """A 35 deg cone is steeper than the Mach cone at Mach 2 (30 deg): linear theory
+    refuses it, the sweep falls back to local inclination, which is exact for a cone
+    at zero incidence (Taylor-Maccoll): CA = Cp_cone (forebody, no base)."""
+    from panair.mesh import BodyGeometry, RocketGeometry
+    from panair.solver.nose_correction import TangentCone
+    r, half = 0.05, np.radians(35.0)
+    lc = r / np.tan(half)
+    x = np.concatenate([np.linspace(0.0, lc, 30), np.linspace(lc, lc + 0.5, 20)[1:]])
+    rr = np.where(x <= lc, x * np.tan(half), r)
+    g = RocketGeometry(BodyGeometry(x, rr), (), "cone35")
+    sref = np.pi * r * r
+    fine = MeshOptions(n_theta=64, n_nose=16, body_spacing=1.0, n_chord=8, n_span=3)
+    c, info = sweep_pressure(g, [2.0], np.radians([0.0, 4.0]), sref=sref, lref=2 * r, xref=0.0,
+                             options=fine, workers=1, progress=False)
+    assert info["mach_local_inclination"] == [2.0]
+    exact = float(TangentCone(2.0).cp(half))
+    print(f"cone 35 deg, Mach 2: CA {c['CA'][0, 0]:.4f}, Taylor-Maccoll {exact:.4f}")
+    assert c["CA"][0, 0] == pytest.approx(exact, rel=0.02)     # faceted mesh: 2 %
+    assert c["CN"][0, 1] > 0

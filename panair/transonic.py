@@ -1,0 +1,162 @@
+"""Transonic zero-lift pressure drag from the geometry and the panel solutions.
+
+Linearised potential flow has no solution near Mach 1, and below it a
+Prandtl-Glauert panel solution has no compressibility drag at all, so the
+zero-lift pressure drag ``P(M)`` of a table is assembled from three sourced
+pieces (the angle-of-attack increments stay the panel solutions', faired
+across the gap by :func:`panair.bridge.transonic_bridge`):
+
+1. **Below the critical Mach number** ``M_cr``: attached subsonic flow has no
+   pressure drag (d'Alembert), so the panel solution's zero-lift residual is
+   discretisation error (measured about -0.02 ... +0.02 on finned bodies) and
+   is replaced by the separated-flow and edge drag a potential solution cannot
+   have: blunt nose joints, boattails and fin leading edges (Niskanen 2013,
+   OpenRocket technical documentation sec. 3.4, eq. 3.81, 3.88, 3.89;
+   :func:`ironbark_opt.aero.empirical_drag.separated_pressure_ca`).  A
+   boattail that eq. 3.88 calls separated carries base pressure on its
+   annulus, never the panel method's attached-flow suction.
+2. **The critical Mach number of the configuration** is the lowest of
+   - the body's: the free-stream Mach number at which the body's minimum
+     surface pressure coefficient, taken from the lowest-Mach panel solution
+     (scaled back to incompressible by its Prandtl-Glauert factor) and
+     corrected for compressibility by the Karman-Tsien rule
+     (Tsien, J. Aeronaut. Sci. 6, 1939), reaches the sonic pressure
+     coefficient Cp* (isentropic, gamma = 1.4) — :func:`body_critical_mach`;
+   - each fin set's: Korn's drag-divergence equation with simple sweep theory
+     (Korn 1970, as extended by Mason, "Configuration Aerodynamics", Virginia
+     Tech, ch. 7, eq. 7-1: M_dd = kappa_A / cos L - (t/c) / cos^2 L, kappa_A =
+     0.87 for conventional sections, zero lift) and Lock's fourth-power
+     drag-rise law, which puts the critical Mach number (0.1/80)^(1/3) = 0.108
+     below M_dd (Mason ch. 7; Gur, Mason & Schetz, J. Aircraft 47(6), 2010) —
+     :func:`fin_critical_mach`.
+3. **Between M_cr and the first supersonic panel solution** the drag rises
+   monotonically from the subsonic value (zero slope added at M_cr) to the
+   wave drag at Mach 1, and joins the supersonic solutions.  The sonic value
+   is the first supersonic solution's zero-lift pressure drag: by the
+   transonic area rule (Whitcomb, NACA Rep. 1273, 1956) and slender-body
+   theory (Ward, Q. J. Mech. Appl. Math. 2, 1949) the wave drag of a slender
+   configuration near Mach 1 is that of its equivalent body and independent
+   of Mach number, so the supersonic linear-theory value carries down to
+   Mach 1.  The fairing is the monotone cubic Hermite interpolant of
+   Fritsch & Carlson (1980), as :mod:`panair.bridge`.
+
+Numeric-only.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.interpolate import PchipInterpolator
+from scipy.optimize import brentq
+
+GAMMA = 1.4
+#: Korn's technology factor for conventional (non-supercritical) sections (Mason ch. 7)
+KORN_KAPPA = 0.87
+#: Lock's law: M_dd - M_cr = (0.1 / 80)^(1/3) (dCd/dM = 0.1 at M_dd with dCd = 20 (M - M_cr)^4)
+LOCK_OFFSET = (0.1 / 80.0) ** (1.0 / 3.0)
+#: Mach number of the sonic anchor of the fairing [-]
+MACH_SONIC = 1.0
+#: Largest critical Mach number used (the fairing needs room below Mach 1) [-]
+MACH_CR_MAX = 0.95
+
+__all__ = ["cp_sonic", "karman_tsien", "body_critical_mach", "fin_critical_mach",
+           "zero_lift_pressure", "LOCK_OFFSET"]
+
+
+def cp_sonic(mach):
+    """Sonic (critical) pressure coefficient Cp* [-] at free-stream ``mach`` [-]
+    (isentropic flow, gamma = 1.4)."""
+    m2 = np.asarray(mach, float) ** 2
+    g = GAMMA
+    return 2.0 / (g * m2) * (((2.0 + (g - 1.0) * m2) / (g + 1.0)) ** (g / (g - 1.0)) - 1.0)
+
+
+def karman_tsien(cp0, mach):
+    """Compressible pressure coefficient [-] from the incompressible ``cp0`` [-]
+    at ``mach`` [-] (Karman-Tsien rule, Tsien 1939)."""
+    m2 = np.asarray(mach, float) ** 2
+    beta = np.sqrt(1.0 - m2)
+    return cp0 / (beta + m2 / (1.0 + beta) * cp0 / 2.0)
+
+
+def body_critical_mach(cp0_min: float) -> float:
+    """Free-stream Mach number [-] at which the minimum pressure coefficient
+    ``cp0_min`` [-] (incompressible) becomes sonic (Karman-Tsien = Cp*).
+
+    ``cp0_min >= 0`` (no suction anywhere) returns :data:`MACH_CR_MAX`.
+    """
+    if not (cp0_min < 0):
+        return MACH_CR_MAX
+    f = lambda m: float(karman_tsien(cp0_min, m) - cp_sonic(m))
+    # scan upward (the Karman-Tsien denominator vanishes for strong suction near Mach 1;
+    # the critical Mach number is the first crossing below that)
+    grid = np.linspace(0.05, 0.999, 400)
+    beta = np.sqrt(1.0 - grid ** 2)
+    ok = beta + grid ** 2 / (1.0 + beta) * cp0_min / 2.0 > 0
+    vals = np.array([f(m) if k else -1.0 for m, k in zip(grid, ok)])
+    if vals[0] < 0:          # sonic already at Mach 0.05: a singular panel, not the body
+        return float(grid[0])
+    neg = np.nonzero(vals < 0)[0]
+    if not len(neg):
+        return MACH_CR_MAX
+    i = int(neg[0])
+    return min(float(brentq(f, grid[i - 1], grid[i], xtol=1e-7)), MACH_CR_MAX)
+
+
+def fin_critical_mach(fin) -> float:
+    """Critical Mach number [-] of a fin set (:class:`panair.mesh.FinGeometry`):
+    Korn's equation with the mid-chord sweep, minus Lock's offset.
+
+    t/c is the thickness over the mean geometric chord; the sweep is that of
+    the line joining root and tip mid-chords.
+    """
+    root, tip = float(fin.chord_at(0.0)), float(fin.chord_at(1.0))
+    mean_chord = 0.5 * (root + tip)
+    tc = fin.thickness / max(mean_chord, 1e-300)
+    tan_half = (float(fin.le_at(1.0)) + 0.5 * tip - 0.5 * root) / fin.span
+    c = math.cos(math.atan(tan_half))
+    m_dd = KORN_KAPPA / c - tc / c ** 2                 # Korn / Mason eq. 7-1, c_l = 0
+    return float(min(m_dd - LOCK_OFFSET, MACH_CR_MAX))
+
+
+def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup):
+    """Zero-lift pressure CA P(M) [-] at ``mach_out`` [-] (see module docstring).
+
+    Parameters
+    ----------
+    mach_out : 1-D array [-]
+    mach_cr : float [-]
+        Critical Mach number of the configuration.
+    subsonic : callable mach -> P [-]
+        The subsonic (separated-flow and edge) pressure drag, used up to ``mach_cr``.
+    mach_sup : 1-D array [-]
+        Supersonic Mach numbers solved (>= 1.2), may be empty only if every
+        ``mach_out`` is <= ``mach_cr``.
+    p_sup : 1-D array [-]
+        Their zero-lift pressure CA.
+
+    Returns
+    -------
+    ndarray [-], same length as ``mach_out``.
+    """
+    m = np.asarray(mach_out, float)
+    mach_sup = np.asarray(mach_sup, float)
+    p_sup = np.asarray(p_sup, float)
+    out = np.asarray(subsonic(np.minimum(m, mach_cr)), float).copy()
+    gap = m > mach_cr
+    if not np.any(gap):
+        return out
+    if len(mach_sup) == 0:
+        raise ValueError("a supersonic solution is needed above the critical Mach number")
+    # anchors: the subsonic curve just below M_cr (its slope), M_cr, Mach 1, supersonic
+    m_lo = np.array([max(mach_cr - 0.05, 0.0), mach_cr])
+    p_lo = np.asarray(subsonic(m_lo), float)
+    xs = np.concatenate([m_lo, [MACH_SONIC], mach_sup])
+    ys = np.concatenate([p_lo, [p_sup[0]], p_sup])
+    keep = np.concatenate([[True], np.diff(xs) > 1e-9])
+    fair = PchipInterpolator(xs[keep], ys[keep], extrapolate=True)
+    sup = m >= mach_sup[0]
+    out[gap & ~sup] = fair(m[gap & ~sup])
+    out[sup] = np.interp(m[sup], mach_sup, p_sup) if len(mach_sup) > 1 else p_sup[0]
+    return out

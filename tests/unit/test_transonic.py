@@ -1,0 +1,66 @@
+"""panair.transonic: critical Mach numbers and the zero-lift pressure-drag model."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from panair.mesh import FinGeometry
+from panair.transonic import (LOCK_OFFSET, MACH_CR_MAX, body_critical_mach, cp_sonic,
+                              fin_critical_mach, karman_tsien, zero_lift_pressure)
+
+
+def test_sonic_pressure_coefficient_limits():
+    # Cp* = 0 at Mach 1 (the local speed is the free-stream speed); at Mach 0.5 the
+    # isentropic value is -2.13 (e.g. Anderson, Fundamentals of Aerodynamics, eq. 11.60)
+    assert abs(cp_sonic(1.0)) < 1e-12
+    assert cp_sonic(0.5) == pytest.approx(-2.13, abs=5e-3)
+
+
+def test_karman_tsien_reduces_to_incompressible_and_exceeds_prandtl_glauert():
+    assert karman_tsien(-0.4, 1e-6) == pytest.approx(-0.4, rel=1e-9)
+    m = 0.7
+    assert karman_tsien(-0.4, m) < -0.4 / np.sqrt(1 - m * m) < -0.4
+
+
+def test_body_critical_mach_naca0012_example():
+    # NACA 0012 at zero lift, Cp_min = -0.43 (incompressible): Prandtl-Glauert gives the
+    # textbook critical Mach number 0.74 (Anderson, Fundamentals of Aerodynamics,
+    # Example 11.5); Karman-Tsien, which amplifies suction more, gives a lower one.
+    pg = brentq(lambda m: -0.43 / np.sqrt(1 - m * m) - cp_sonic(m), 0.3, 0.99)
+    kt = body_critical_mach(-0.43)
+    print(f"M_cr Prandtl-Glauert {pg:.4f}, Karman-Tsien {kt:.4f}")
+    assert pg == pytest.approx(0.74, abs=0.01)
+    assert pg - 0.03 < kt < pg
+    assert body_critical_mach(0.1) == MACH_CR_MAX       # no suction: never critical
+
+
+def test_fin_critical_mach_korn_lock():
+    # unswept rectangular fin, t/c = 0.12: Korn M_dd = 0.87 - 0.12 = 0.75, M_cr = M_dd - 0.108
+    fin = FinGeometry(4, 0.1, 0.1, 0.1, 0.0, 1.0, 0.012)
+    assert fin_critical_mach(fin) == pytest.approx(0.75 - LOCK_OFFSET, abs=1e-9)
+    assert LOCK_OFFSET == pytest.approx(0.1077, abs=1e-4)
+    # sweep raises it: mid-chord sweep 45 deg, t/c 0.04 -> 0.87/cos45 - 0.04/cos^2 45 - 0.108
+    swept = FinGeometry(4, 0.1, 0.1, 0.1, 0.1, 1.0, 0.004)
+    expect = min(0.87 / np.cos(np.pi / 4) - 0.04 / 0.5 - LOCK_OFFSET, MACH_CR_MAX)
+    assert fin_critical_mach(swept) == pytest.approx(expect, abs=1e-9)
+
+
+def test_zero_lift_pressure_is_subsonic_then_monotone_rise_then_supersonic():
+    sub = lambda m: 0.01 + 0.02 * np.asarray(m) ** 2
+    m_sup, p_sup = np.array([1.2, 1.5, 2.0]), np.array([0.30, 0.26, 0.21])
+    m = np.linspace(0.05, 2.0, 400)
+    p = zero_lift_pressure(m, 0.8, sub, m_sup, p_sup)
+    below = m <= 0.8
+    assert np.allclose(p[below], sub(m[below]))
+    rise = (m > 0.8) & (m <= 1.0)
+    assert np.all(np.diff(p[rise]) >= -1e-12)                    # monotone drag rise
+    assert p[np.argmin(np.abs(m - 1.0))] == pytest.approx(0.30, abs=2e-3)
+    assert zero_lift_pressure([1.2, 1.5, 2.0], 0.8, sub, m_sup, p_sup) == pytest.approx(p_sup)
+    # continuous slope at the critical Mach number (C1 fairing)
+    h = 1e-5
+    left = (sub(0.8) - sub(0.8 - h)) / h
+    right = (zero_lift_pressure([0.8 + h], 0.8, sub, m_sup, p_sup)[0] - sub(0.8)) / h
+    assert right == pytest.approx(left, abs=0.02)
+    with pytest.raises(ValueError):
+        zero_lift_pressure([0.9], 0.8, sub, [], [])
