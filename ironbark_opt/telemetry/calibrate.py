@@ -274,9 +274,12 @@ def calibrate(setup, log: FlightLog, *, parameters: Sequence[str] = DEFAULT_PARA
         return r, (np.vstack([sim[c][1] / noise[c] for c in chans]) if jac else None)
 
     x = np.concatenate([q, np.zeros(len(extra))])
-    if fit_time_offset:
-        x = _initial_shift(x, model_values, sm.nodes(q), data, noise, chans, baro)
-    r, J = residuals(x)
+    try:
+        if fit_time_offset:
+            x = _initial_shift(x, model_values, sm.nodes(q), data, noise, chans, baro)
+        r, J = residuals(x)
+    except RuntimeError as err:                    # CasADi: rail-exit rootfinder / evaluation failed
+        raise SolverError(f"calibration: the model could not be flown at the start values ({err})") from None
     cost = float(r @ r)
     lam = 1e-6                    # start as Gauss-Newton; damp only when a step fails
     it = 0
