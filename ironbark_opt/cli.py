@@ -17,7 +17,8 @@ def main():
 
 def _register():
     import importlib
-    for mod in ("cli_simulate", "cli_optimise", "cli_analysis", "cli_ork", "cli_motor", "cli_weather", "cli_aero"):
+    for mod in ("cli_simulate", "cli_optimise", "cli_analysis", "cli_ork", "cli_motor", "cli_weather", "cli_aero",
+                "cli_flight"):
         try:
             module = importlib.import_module(f"ironbark_opt.{mod}")
         except ModuleNotFoundError as err:

@@ -93,16 +93,20 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @click.option("--histogram", "hist_path", type=_FILE_OUT, help="Write the apogee histogram (PNG/PDF/SVG).")
 @click.option("--ellipse", "ellipse_path", type=_FILE_OUT,
               help="Write the landing (or, without --descent, apogee) dispersion ellipses.")
+@click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
+              help="Apply a calibration file (from 'ironbark calibrate --output').")
 @json_option
 @handle_errors
 def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, table,
                        ballast_kg, ballast_x_m, chunk, jit, executor, results_dir, progress, csv_path, hist_path,
-                       ellipse_path, as_json):
+                       ellipse_path, calibration_path, as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
     from ironbark_opt.analysis.montecarlo import montecarlo
 
+    from ironbark_opt.telemetry.calibration_file import apply_calibration
     setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
+    setup = apply_calibration(setup, calibration_path)
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit=jit, executor=executor, output=results_dir)

@@ -47,6 +47,8 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--free-position", is_flag=True, help="Optimise the position within the ballast bay too.")
 @click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True)
 @table_option
+@click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
+              help="Apply a calibration file (from 'ironbark calibrate --output').")
 @click.option("--processes", type=int, help="Worker processes for several motors.")
 @click.option("--executor", metavar="local|local:N|dask://HOST:PORT",
               help="Where several motors are solved (replaces --processes): this process, N local "
@@ -56,14 +58,16 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, forecast, site, time, min_rail_speed, min_margin,
-                    max_ballast, ballast_x, free_position, rail_exit, table, processes, executor, plot_path,
+                    max_ballast, ballast_x, free_position, rail_exit, table, calibration_path, processes, executor, plot_path,
                     as_json):
     """Ballast (and motor) that put ROCKET's apogee on --target."""
     from ironbark_opt.optimise.ballast import solve_ballast
     from ironbark_opt.optimise.motor_choice import choose_motor
     from ironbark_opt.vehicle import load_setup
 
+    from ironbark_opt.telemetry.calibration_file import apply_calibration
     setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table), forecast, site, time)
+    setup = apply_calibration(setup, calibration_path)
     kwargs = dict(mass_max=max_ballast, ballast_x=ballast_x, free_position=free_position,
                   min_rail_speed=min_rail_speed, min_margin=min_margin)
     if executor is not None and not motors:

@@ -21,6 +21,8 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files).")
 @table_option
+@click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
+              help="Apply a calibration file (from 'ironbark calibrate --output').")
 @click.option("--descent/--no-descent", default=False, help="Continue to landing.")
 @click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, writable=True), help="Write the time series.")
@@ -29,7 +31,7 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @json_option
 @handle_errors
 def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevation_m, rail_exit, ballast_kg,
-                     ballast_x_m, config, table, descent, jit, csv_path, plot_path, as_json):
+                     ballast_x_m, config, table, calibration_path, descent, jit, csv_path, plot_path, as_json):
     """Simulate ROCKET (.toml or .ork) to apogee and print the summary."""
     import dataclasses
 
@@ -40,6 +42,8 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
     if config is not None:
         kwargs["config"] = config
     setup = load_setup(rocket, **kwargs)
+    from ironbark_opt.telemetry.calibration_file import apply_calibration
+    setup = apply_calibration(setup, calibration_path)
     if elevation_m is not None:
         setup = dataclasses.replace(setup, site_elevation=elevation_m)
     overrides = {}

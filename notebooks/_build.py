@@ -68,6 +68,39 @@ MONTECARLO = [
     ("code", "fig = plot_landing_ellipse(disp)"),
 ]
 
+FLIGHT_LOG = [
+    ("md", "# Learn from the last flight\n\nImport the altimeter log of NUSTARS' test flight FT1 (TeleMega), "
+           "compare it with the team's OpenRocket design, calibrate drag and thrust on the first 60 % of the "
+           "climb, and re-solve the ballast for the next flight with what was learned."),
+    ("code", "from pathlib import Path\nimport matplotlib\nmatplotlib.use('Agg')\n"
+             "from ironbark_opt.vehicle import load_setup\nfrom ironbark_opt.flight import simulate\n"
+             "from ironbark_opt.telemetry import read_log\nfrom ironbark_opt.telemetry.compare import compare_flight\n"
+             "from ironbark_opt.telemetry.calibrate import calibrate\n"
+             "from ironbark_opt.telemetry.calibration_file import write_calibration, apply_calibration\n"
+             "from ironbark_opt.telemetry.plots import plot_comparison, plot_residuals\n"
+             "from ironbark_opt.optimise.ballast import solve_ballast\n"
+             "ROOT = Path.cwd() if (Path.cwd() / 'examples').exists() else Path.cwd().parent\n"
+             "DATA = ROOT / 'tests/data/telemetry'\n"
+             "setup = load_setup(DATA / 'nustars-2026-ft1-telemega.ork')\n"
+             "log = read_log(DATA / 'nustars-2026-ft1-telemega.csv.gz')\nprint(log.summary())"),
+    ("md", "## 1. The model against the flight"),
+    ("code", "comparison = compare_flight(setup, log)\nprint(comparison.summary())\nfig = plot_comparison(comparison)"),
+    ("md", "## 2. Calibrate on the first 60 % of the climb\n\nGauss-Newton on the exact Jacobian of the "
+           "trajectory; the log's time shift and the static-port pressure error of the baro are fitted too."),
+    ("code", "cal = calibrate(setup, log, until_fraction=0.6)\nprint(cal.summary())\nfig = plot_residuals(cal)\ncal.to_dataframe()"),
+    ("code", "import tempfile\npath = write_calibration(cal, Path(tempfile.mkdtemp()) / 'ft1-calibration.toml')\n"
+             "calibrated = apply_calibration(setup, path)\n"
+             "before, after = simulate(setup).apogee_agl, simulate(calibrated).apogee_agl\n"
+             "print(f'logged apogee {log.apogee_agl:.1f} m; model {before:.1f} m ({before - log.apogee_agl:+.1f}), '\n"
+             "      f'calibrated {after:.1f} m ({after - log.apogee_agl:+.1f})')\n"
+             "assert abs(after - log.apogee_agl) * 3 <= abs(before - log.apogee_agl)"),
+    ("md", "## 3. Next flight: ballast for 7,000 ft with and without the calibration"),
+    ("code", "for label, s in (('design model', setup), ('calibrated', calibrated)):\n"
+             "    sol = solve_ballast(s, '7000ft')\n"
+             "    print(f\"{label:>12}: ballast {sol.ballast:.3f} kg, re-simulated apogee \"\n"
+             "          f\"{sol.values['resimulated_apogee_agl_m']:.1f} m\")"),
+]
+
 
 def build(name, cells):
     nb = new_notebook()
@@ -80,3 +113,4 @@ if __name__ == "__main__":
     build("launch_day_ballast.ipynb", BALLAST)
     build("sensitivity_sweep.ipynb", SENSITIVITY)
     build("monte_carlo.ipynb", MONTECARLO)
+    build("flight_log_calibration.ipynb", FLIGHT_LOG)
