@@ -22,7 +22,8 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files).")
 @table_option
 @click.option("--descent/--no-descent", default=False, help="Continue to landing.")
-@click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
+@click.option("--jit/--no-jit", default=None,
+              help="Compile the model to C now / never (default: compiled when cached, else compiled in the background).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, writable=True), help="Write the time series.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
               help="Write an overview figure (PNG/PDF/SVG).")
@@ -50,7 +51,7 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
         overrides["inclination"] = math.radians(inclination_deg)
     if heading_deg is not None:
         overrides["heading"] = math.radians(heading_deg)
-    flight = simulate(setup, parameters=overrides, descent=descent, jit=jit)
+    flight = simulate(setup, parameters=overrides, descent=descent, jit="auto" if jit is None else jit)
     if csv_path:
         flight.to_dataframe().to_csv(csv_path, index=False)
     if plot_path:

@@ -13,6 +13,7 @@ from typing import Mapping
 import numpy as np
 
 from ironbark_opt import params as params_mod
+from ironbark_opt.dynamics.integrator import jit_mode
 from ironbark_opt.dynamics.model import FlightModel, Steps
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import OutOfRangeWarning
@@ -20,8 +21,9 @@ from ironbark_opt.errors import OutOfRangeWarning
 _MODELS: dict[int, tuple] = {}
 
 
-def flight_model(setup, steps: Steps | None = None, jit: bool = False) -> FlightModel:
+def flight_model(setup, steps: Steps | None = None, jit="auto") -> FlightModel:
     """The (cached) :class:`FlightModel` of ``setup``: built once, reused."""
+    jit = jit_mode(jit)
     key = id(setup)
     hit = _MODELS.get(key)
     if hit is not None:
@@ -189,7 +191,7 @@ def _warn_outside_table(setup, df: dict) -> None:
 
 
 def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
-             steps: Steps | None = None, jit: bool = False, descent: bool = False,
+             steps: Steps | None = None, jit="auto", descent: bool = False,
              model: FlightModel | None = None) -> Flight:
     """Fly ``setup`` to apogee (and optionally to landing).
 
@@ -205,8 +207,9 @@ def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
         A full parameter vector instead of ``parameters``.
     steps : Steps, optional
         Integrator discretisation.
-    jit : bool
-        Use C-compiled trajectory functions (cached on disk).
+    jit : bool or "auto"
+        Use C-compiled trajectory functions (cached on disk); ``"auto"`` (default):
+        compiled when cached, else the VM with a background compile for next time.
     descent : bool
         Continue to landing under the setup's parachutes (ballistic if none).
     model : FlightModel, optional

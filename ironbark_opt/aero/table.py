@@ -85,6 +85,11 @@ class GridSpline:
         self._numeric = None     # the SciPy spline, fitted on the first numeric evaluation
         self._casadi = None
 
+    def __getstate__(self):
+        # the fitted splines are caches, rebuilt on first use: a pickle (the flight-model
+        # cache key, a worker's copy) depends on the data only, not on what was evaluated
+        return {**self.__dict__, "_numeric": None, "_casadi": None}
+
     # ------------------------------------------------------------------ numeric
     def _scipy_spline(self):
         """The SciPy ``NdBSpline`` (fitted once, on first use: SciPy's interpolate

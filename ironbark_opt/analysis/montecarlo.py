@@ -189,7 +189,7 @@ def _check(samples, chunk, executor, target, band):
 
 def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: bool = False, target=None,
                band: float | None = None, chunk: int = 250, executor=None, progress: bool = True,
-               parameters: Mapping[str, float] | None = None, jit: bool = False, model=None,
+               parameters: Mapping[str, float] | None = None, jit="auto", model=None,
                output=None) -> Dispersion:
     """Fly ``samples`` dispersed copies of ``setup`` and collect statistics (numeric-only).
 

@@ -17,6 +17,7 @@ expressions.
 """
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass
 
@@ -26,7 +27,8 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics import rhs as rhs_mod
 from ironbark_opt.dynamics.frames import launch_quaternion, rail_direction_l, rotation_matrix
-from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, phase_trajectory, rk4_step
+from ironbark_opt.dynamics import model_cache
+from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, jit_mode, phase_trajectory, rk4_step
 from ironbark_opt.errors import InputError, SolverError
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
@@ -69,26 +71,57 @@ class FlightModel:
     ----------
     setup : FlightSetup
     steps : Steps, optional
-    jit : bool
+    jit : bool or "auto"
         Compile the trajectory Functions to C (cached on disk); falls back
-        to the VM when no C compiler is available.
+        to the VM when no C compiler is available.  ``"auto"``: the compiled
+        library if the cache has it, else the VM now and a background compile
+        for the next run (:func:`~ironbark_opt.dynamics.integrator.jit_mode`).
+
+    A built model (Functions and RK4 grid) is kept on disk
+    (:mod:`~ironbark_opt.dynamics.model_cache`); the same setup is loaded, not rebuilt.
     """
 
-    def __init__(self, setup, steps: Steps | None = None, *, jit: bool = False):
+    def __init__(self, setup, steps: Steps | None = None, *, jit=False):
         self.setup = setup
         self.steps = steps or Steps()
-        self.jit = jit
-        burn = float(setup.motor.burn_time) * float(setup.nominal.get("burn_time_scale", 1.0))
-        self.n_boost = max(20, int(math.ceil(burn / self.steps.dt_boost)))
-        self.rhs = {ph: rhs_mod.build(setup, ph) for ph in ("rail", "boost", "coast")}
-        self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
+        self.jit = jit_mode(jit)
         self.trajectory, self._run = {}, {}
-        self.n_coast = None              # chosen from the nominal flight's stiffness below
-        self.coast_grading = 1.0
-        self._set_trajectory("rail", self.steps.n_rail)
-        self._set_trajectory("boost", self.n_boost)
-        self._build_events()
-        self._choose_grid(setup.nominal_parameters())
+        self._key = model_cache.model_key(setup, self.steps)
+        cached = model_cache.load(self._key)
+        if cached is not None:
+            self.rhs = {ph: cached[f"rhs_{ph}"] for ph in ("rail", "boost", "coast")}
+            self.step = {ph: cached[f"step_{ph}"] for ph in ("rail", "boost", "coast")}
+            self.n_boost, self.n_coast, self.coast_grading = cached["discretisation"]
+            for ph in ("rail", "boost", "coast"):
+                self.trajectory[ph] = self._run[ph] = cached[f"traj_{ph}"]
+            self._build_events(cached["apex"])
+        else:
+            burn = float(setup.motor.burn_time) * float(setup.nominal.get("burn_time_scale", 1.0))
+            self.n_boost = max(20, int(math.ceil(burn / self.steps.dt_boost)))
+            self.rhs = {ph: rhs_mod.build(setup, ph) for ph in ("rail", "boost", "coast")}
+            self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
+            self.n_coast = None              # chosen from the nominal flight's stiffness below
+            self.coast_grading = 1.0
+            self._set_trajectory("rail", self.steps.n_rail)
+            self._set_trajectory("boost", self.n_boost)
+            self._build_events()
+            self._choose_grid(setup.nominal_parameters())
+            model_cache.store(self._key, {**{f"rhs_{ph}": f for ph, f in self.rhs.items()},
+                                          **{f"step_{ph}": f for ph, f in self.step.items()},
+                                          **{f"traj_{ph}": f for ph, f in self.trajectory.items()},
+                                          "apex": self._apex, "discretisation": self.discretisation()})
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = self._compiled(self.trajectory[ph])
+        self._apex_run = self._compiled(self._apex)
+
+    def _compiled(self, func: ca.Function) -> ca.Function:
+        """``func`` compiled as ``self.jit`` asks (the VM Function itself when it says no)."""
+        if not self.jit:
+            return func
+        key = None
+        if self._key is not None:
+            key = hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
+        return compile_function(func, key=key, background=self.jit == "auto")
 
     def _choose_grid(self, p):
         """Fix the RK4 grid from the *nominal* flight (deterministic: the same
@@ -115,6 +148,8 @@ class FlightModel:
         self.n_boost, self.n_coast, self.coast_grading = int(n_boost), int(n_coast), float(coast_grading)
         self._set_trajectory("boost", self.n_boost)
         self._set_trajectory("coast", self.n_coast)
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = self._compiled(self.trajectory[ph])
 
     @property
     def coast_fractions(self) -> np.ndarray:
@@ -124,7 +159,7 @@ class FlightModel:
     def _set_trajectory(self, phase: str, n: int):
         grading = self.coast_grading if phase == "coast" else 1.0
         self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
-        self._run[phase] = compile_function(self.trajectory[phase]) if self.jit else self.trajectory[phase]
+        self._run[phase] = self.trajectory[phase]      # compiled (if asked) once the grid is fixed
         for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0] == phase]:
             del self._map_cache[key]
 
@@ -207,7 +242,7 @@ class FlightModel:
         travel = ca.dot(x[0:3], rail_direction_l(P["inclination"], P["heading"]))
         return travel - (P["rail_length"] - self.setup.rail_exit_offset)
 
-    def _build_events(self):
+    def _build_events(self, apex: ca.Function | None = None):
         ps = ca.SX.sym("p", params.SIZE)
         P = params.unpack(ps)
         self._launch = ca.Function("launch", [ps], [self.initial_state(ps),
@@ -219,13 +254,13 @@ class FlightModel:
                                             {"abstol": 1e-10, "max_iter": 50, "error_on_fail": True})
         x = ca.SX.sym("x", 13)
         self.vz_l = ca.Function("vz_l", [x], [(rotation_matrix(x[6:10]) @ x[3:6])[2]])
-        h = ca.SX.sym("h")
-        t = ca.SX.sym("t")
-        ps = ca.SX.sym("p", params.SIZE)
-        vz = self.vz_l(self.step["coast"](x, t, h, ps))
-        self._apex = ca.Function("apex", [x, t, h, ps], [vz, ca.jacobian(vz, h)])
-        if self.jit:
-            self._apex = compile_function(self._apex)
+        if apex is None:
+            h = ca.SX.sym("h")
+            t = ca.SX.sym("t")
+            ps = ca.SX.sym("p", params.SIZE)
+            vz = self.vz_l(self.step["coast"](x, t, h, ps))
+            apex = ca.Function("apex", [x, t, h, ps], [vz, ca.jacobian(vz, h)])
+        self._apex = self._apex_run = apex
 
     # ------------------------------------------------------------------ numeric
     def _rail_travel(self, t_r: float, p: np.ndarray, geom) -> tuple[float, np.ndarray]:
@@ -367,7 +402,7 @@ class FlightModel:
     def _mapped(self, key, n):
         cache = self.__dict__.setdefault("_map_cache", {})
         if (key, n) not in cache:
-            base = {"launch": self._launch, "apex": self._apex, "vz": self.vz_l,
+            base = {"launch": self._launch, "apex": self._apex_run, "vz": self.vz_l,
                     "step": self.step["coast"]}.get(key) or self._run[key]
             cache[(key, n)] = base.map(n, "thread", 2) if key in self._run else base.map(n)
         return cache[(key, n)]
@@ -580,12 +615,27 @@ class FlightModel:
     def outputs(self, t, x, phase, p) -> np.ndarray:
         """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples."""
         y = np.zeros((len(rhs_mod.OUTPUT_NAMES), t.size))
+        p_col = np.asarray(p, dtype=float).reshape(-1, 1)
         for ph in np.unique(phase):
             idx = np.nonzero(phase == ph)[0]
-            f = self.rhs[ph] if ph in self.rhs else self._stage_rhs[ph]
-            fm = f.map(idx.size)
-            y[:, idx] = np.array(fm(x[:, idx], t[idx][None, :], np.repeat(p[:, None], idx.size, axis=1))[1])
+            y[:, idx] = np.array(self._outputs_function(ph, idx.size)(x[:, idx], t[idx][None, :], p_col))
         return y
+
+    def _outputs_function(self, phase: str, n: int) -> ca.Function:
+        """``(X (13 x n), t (1 x n), p) -> Y``: the phase's output rows mapped over n
+        samples; built once per (phase, n) and kept (``simulate`` calls it on every run)."""
+        cache = self.__dict__.setdefault("_out_cache", {})
+        if (phase, n) not in cache:
+            base = cache.get(phase)
+            if base is None:
+                f = self.rhs[phase] if phase in self.rhs else self._stage_rhs[phase]
+                xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", params.SIZE)
+                base = ca.Function(f"outputs_{phase}", [xs, ts, ps], [f(xs, ts, ps)[1]])
+                if phase in self.rhs:
+                    base = self._compiled(base)
+                cache[phase] = base
+            cache[(phase, n)] = base.map(n)
+        return cache[(phase, n)]
 
 
 def _final_state(model: FlightModel, p, T, t_rail_guess: float):
