@@ -24,12 +24,14 @@ In-process:
   over RocketPy flights to the same 0.5 m (goal >= 20x; RocketPy's ballast is
   added as dry mass at the dry CG, which RocketPy can express).
 
-Optional ``--aero BASELINE_CHECKOUT``: ``aero build`` of the Kestrel example at
-its default mesh here and in a checkout of the starting commit (slow: minutes).
+Optional ``--baseline CHECKOUT`` (e.g. ``git worktree add /tmp/base 9829aad``):
+the first ``simulate`` of a new rocket (empty caches) here against the baseline's
+VM path, in turn; with ``--aero`` also ``aero build`` of the Kestrel example at
+its default mesh in both (slow: minutes).
 
 RocketPy parts need ``pip install -e .[bench]``; they are skipped without it.
 
-Run: ``python benchmarks/bench_commands.py [--runs 5] [--aero /tmp/base]``.
+Run: ``python benchmarks/bench_commands.py [--runs 5] [--baseline /tmp/base [--aero]]``.
 """
 from __future__ import annotations
 
@@ -215,6 +217,25 @@ def in_process(repeat: int) -> None:
               f"root-finder / warm ballast {t_root / t_ballast:5.1f}x (goal >= 20)")
 
 
+def first_runs(baseline: Path, runs: int) -> None:
+    """First simulate of a new rocket (empty caches) here and at the baseline, in turn."""
+    walls = {"here": [], "baseline": []}
+    with tempfile.TemporaryDirectory(prefix="ironbark-bench-") as tmp:
+        for i in range(runs + 1):
+            for label, root in (("here", ROOT), ("baseline", baseline)):
+                env = environment(Path(tmp) / f"cache-{label}-{i}", Path(tmp) / f"pyc-{label}", root)
+                cmd = [sys.executable, "-m", "ironbark_opt.cli", "simulate", "examples/calisto/calisto.toml", "--json"]
+                wall = timed(cmd, env, cwd=root)[0]
+                if i:                                   # round 0 writes the bytecode caches
+                    walls[label].append(wall)
+                wait_for_background_compiles(Path(tmp) / f"cache-{label}-{i}")
+    print(f"\nfirst simulate of a new rocket (empty model/compile caches), {runs} rounds:")
+    for label, w in walls.items():
+        print(f"  {label:9s} {statistics.median(w):7.3f} s  (min {min(w):.3f}, max {max(w):.3f})")
+    r = statistics.median(a / b for a, b in zip(walls["here"], walls["baseline"]))
+    print(f"  here / baseline (VM path of the starting commit)  {r:5.2f}x  (goal <= 1)")
+
+
 def aero_build(baseline: Path) -> None:
     with tempfile.TemporaryDirectory(prefix="ironbark-bench-") as tmp:
         out = {}
@@ -232,15 +253,18 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5, help="rounds of the whole-command comparison")
     ap.add_argument("--repeat", type=int, default=50, help="repeats of in-process timings")
-    ap.add_argument("--aero", type=Path, default=None, help="a checkout of the starting commit (slow)")
+    ap.add_argument("--baseline", type=Path, default=None, help="a checkout of the starting commit")
+    ap.add_argument("--aero", action="store_true", help="also time aero build of Kestrel (slow; needs --baseline)")
     ap.add_argument("--skip-commands", action="store_true")
     args = ap.parse_args()
     if not args.skip_commands:
         whole_commands(args.runs)
+    if args.baseline is not None:
+        first_runs(args.baseline, max(2, args.runs // 2))
     in_process(args.repeat)
-    if args.aero is not None:
+    if args.aero and args.baseline is not None:
         print("\naero build (one run each):")
-        aero_build(args.aero)
+        aero_build(args.baseline)
     if shutil.which("gcc") is None and shutil.which("cc") is None:
         print("note: no C compiler found; 'compiled' figures are the VM")
 
