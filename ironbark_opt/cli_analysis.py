@@ -83,7 +83,8 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @click.option("--band", "band_m", type=float, help="Half-width of the band around the target [m].")
 @_common
 @click.option("--chunk", type=click.IntRange(min=1), default=250, show_default=True, help="Samples per batch.")
-@click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
+@click.option("--jit/--no-jit", default=None,
+              help="Compile the model to C now / never (default: compiled when cached, else compiled in the background).")
 @click.option("--executor", default="local", show_default=True, metavar="local|local:N|dask://HOST:PORT",
               help="Where the chunks run: this process, N local processes, or a Dask scheduler.")
 @click.option("--results-dir", "results_dir", type=click.Path(file_okay=False),
@@ -109,7 +110,7 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     setup = apply_calibration(setup, calibration_path)
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
-                      progress=progress, parameters=overrides, jit=jit, executor=executor, output=results_dir)
+                      progress=progress, parameters=overrides, jit="auto" if jit is None else jit, executor=executor, output=results_dir)
     if csv_path:
         disp.to_dataframe().to_csv(csv_path, index=False)
     if hist_path or ellipse_path:

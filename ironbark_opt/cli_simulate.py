@@ -24,7 +24,8 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
               help="Apply a calibration file (from 'ironbark calibrate --output').")
 @click.option("--descent/--no-descent", default=False, help="Continue to landing.")
-@click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
+@click.option("--jit/--no-jit", default=None,
+              help="Compile the model to C now / never (default: compiled when cached, else compiled in the background).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, writable=True), help="Write the time series.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
               help="Write an overview figure (PNG/PDF/SVG).")
@@ -54,7 +55,7 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
         overrides["inclination"] = math.radians(inclination_deg)
     if heading_deg is not None:
         overrides["heading"] = math.radians(heading_deg)
-    flight = simulate(setup, parameters=overrides, descent=descent, jit=jit)
+    flight = simulate(setup, parameters=overrides, descent=descent, jit="auto" if jit is None else jit)
     if csv_path:
         flight.to_dataframe().to_csv(csv_path, index=False)
     if plot_path:

@@ -49,6 +49,7 @@ from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
+from ironbark_opt.dynamics.integrator import jit_mode
 from ironbark_opt.errors import InputError, IronbarkError
 
 DASK_SCHEME = "dask://"
@@ -328,7 +329,7 @@ def _impose_steps(model, steps: tuple) -> None:
     model.set_discretisation(*steps)
 
 
-def worker_model(payload: SetupPayload, jit: bool = False, steps: tuple | None = None):
+def worker_model(payload: SetupPayload, jit="auto", steps: tuple | None = None):
     """The FlightModel of ``payload``, built once per process and reused.
 
     Parameters
@@ -341,7 +342,7 @@ def worker_model(payload: SetupPayload, jit: bool = False, steps: tuple | None =
 
     Keyed by the payload digest, ``jit`` and ``steps``; the last few models are kept.
     """
-    key = (payload.digest, bool(jit), None if steps is None else tuple(steps))
+    key = (payload.digest, jit_mode(jit), None if steps is None else tuple(steps))
     with _MODELS_LOCK:
         model = _MODELS.get(key)
         if model is None:
@@ -526,7 +527,7 @@ def run_chunks(executor: Executor, func: Callable, tasks: Sequence[tuple], *, st
 
 
 def fly_samples(setup, P: np.ndarray, *, descent: bool = False, chunk: int = 250, executor=None,
-                output=None, jit: bool = False, model=None, on_chunk=None) -> dict:
+                output=None, jit="auto", model=None, on_chunk=None) -> dict:
     """Fly every column of ``P`` in chunks on ``executor`` (the Monte Carlo engine).
 
     Parameters
@@ -565,16 +566,16 @@ def fly_samples(setup, P: np.ndarray, *, descent: bool = False, chunk: int = 250
         store = None
         if output is not None:
             token = hashlib.sha256(payload.digest.encode() + np.ascontiguousarray(P).tobytes()
-                                   + repr((bool(descent), bool(jit))).encode()).hexdigest()[:32]
+                                   + repr((bool(descent), jit_mode(jit))).encode()).hexdigest()[:32]
             store = ChunkStore(output, token, bounds)
         if ex.in_process:
             def func(P_c, a, descent_, jit_):
                 return batch_columns(model.run_batch(P_c, descent=descent_), a)
-            tasks = [(P[:, a:b], a, bool(descent), bool(jit)) for a, b in bounds]
+            tasks = [(P[:, a:b], a, bool(descent), jit_mode(jit)) for a, b in bounds]
         else:
             steps = discretisation(model)
             func = fly_chunk
-            tasks = [(payload, steps, P[:, a:b], a, bool(descent), bool(jit)) for a, b in bounds]
+            tasks = [(payload, steps, P[:, a:b], a, bool(descent), jit_mode(jit)) for a, b in bounds]
         cb = None if on_chunk is None else (lambda i, _k: on_chunk(bounds[i][1] - bounds[i][0]))
         parts = run_chunks(ex, func, tasks, store=store, on_chunk=cb, label="montecarlo")
     cols = {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}

@@ -11,9 +11,9 @@ from dataclasses import dataclass, field
 from typing import Mapping
 
 import numpy as np
-import pandas as pd
 
 from ironbark_opt import params as params_mod
+from ironbark_opt.dynamics.integrator import jit_mode
 from ironbark_opt.dynamics.model import FlightModel, Steps
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import OutOfRangeWarning
@@ -21,8 +21,9 @@ from ironbark_opt.errors import OutOfRangeWarning
 _MODELS: dict[int, tuple] = {}
 
 
-def flight_model(setup, steps: Steps | None = None, jit: bool = False) -> FlightModel:
+def flight_model(setup, steps: Steps | None = None, jit="auto") -> FlightModel:
     """The (cached) :class:`FlightModel` of ``setup``: built once, reused."""
+    jit = jit_mode(jit)
     key = id(setup)
     hit = _MODELS.get(key)
     if hit is not None:
@@ -51,16 +52,18 @@ class Flight:
     name: str
     parameters: Mapping[str, float]
     summary_values: Mapping[str, float]
-    _table: pd.DataFrame = field(repr=False)
+    #: the time series, column name -> 1-D array (pandas is imported only by `to_dataframe`)
+    _columns: Mapping[str, np.ndarray] = field(repr=False)
 
     def __repr__(self) -> str:
         s = self.summary_values
         return (f"Flight({self.name!r}: apogee {s['apogee_agl_m']:.1f} m AGL at {s['apogee_time_s']:.2f} s, "
                 f"max speed {s['max_speed_mps']:.1f} m/s)")
 
-    def to_dataframe(self) -> pd.DataFrame:
-        """Time series (a copy): one row per integrator sample, SI columns."""
-        return self._table.copy()
+    def to_dataframe(self):
+        """Time series (a new ``pandas.DataFrame``): one row per integrator sample, SI columns."""
+        import pandas as pd
+        return pd.DataFrame({k: np.array(v) for k, v in self._columns.items()})
 
     def to_dict(self) -> dict:
         """Summary with unit-suffixed keys (``apogee_agl_m``, ...) and the parameters."""
@@ -103,7 +106,7 @@ class Flight:
         return "\n".join(lines)
 
 
-def _table(model: FlightModel, run: dict) -> pd.DataFrame:
+def _table(model: FlightModel, run: dict) -> dict[str, np.ndarray]:
     t, x, phase, p = run["t"], run["x"], run["phase"], run["p"]
     y = model.outputs(t, x, phase, p)
     q = x[6:10]
@@ -129,34 +132,36 @@ def _table(model: FlightModel, run: dict) -> pd.DataFrame:
             continue
         else:
             data[name] = y[i]
-    return pd.DataFrame(data)
+    n = len(t)
+    return {k: (np.asarray(v) if np.ndim(v) else np.full(n, v)) for k, v in data.items()}
 
 
-def _summary(model: FlightModel, run: dict, df: pd.DataFrame) -> dict:
+def _summary(model: FlightModel, run: dict, df: dict) -> dict:
     elev = model.setup.site_elevation
     x_a, x_r = run["x_apogee"], run["x_rail"]
-    rail = df.index[df["time_s"] <= run["t_rail"] + 1e-12][-1]
-    i_vmax = int(df["speed_mps"].values.argmax())
-    burn = df.index[df["time_s"] <= run["t_burnout"] + 1e-12][-1]
-    flying = df["phase"].isin(["rail", "boost", "coast"]).values
+    time = df["time_s"]
+    rail = int(np.flatnonzero(time <= run["t_rail"] + 1e-12)[-1])
+    i_vmax = int(df["speed_mps"].argmax())
+    burn = int(np.flatnonzero(time <= run["t_burnout"] + 1e-12)[-1])
+    flying = np.isin(df["phase"], ["rail", "boost", "coast"])
     s = {
         "apogee_agl_m": float(x_a[2]),
         "apogee_asl_m": float(x_a[2] + elev),
         "apogee_time_s": float(run["t_apogee"]),
         "apogee_east_m": float(x_a[0]),
         "apogee_north_m": float(x_a[1]),
-        "max_speed_mps": float(df["speed_mps"].iloc[i_vmax]),
-        "max_speed_time_s": float(df["time_s"].iloc[i_vmax]),
+        "max_speed_mps": float(df["speed_mps"][i_vmax]),
+        "max_speed_time_s": float(time[i_vmax]),
         "max_mach": float(df["mach"][flying].max()),
         "max_acceleration_mps2": float(df["acceleration_mps2"][flying].max()),
         "max_dynamic_pressure_Pa": float(df["dynamic_pressure_Pa"][flying].max()),
         "rail_exit_time_s": float(run["t_rail"]),
         "rail_exit_speed_mps": float(np.linalg.norm(x_r[3:6])),
-        "static_margin_rail_exit_cal": float(df["static_margin_cal"].iloc[rail]),
-        "static_margin_initial_cal": float(df["static_margin_cal"].iloc[0]),
+        "static_margin_rail_exit_cal": float(df["static_margin_cal"][rail]),
+        "static_margin_initial_cal": float(df["static_margin_cal"][0]),
         "burnout_time_s": float(run["t_burnout"]),
-        "burnout_altitude_agl_m": float(df["altitude_agl_m"].iloc[burn]),
-        "launch_mass_kg": float(df["mass_kg"].iloc[0]),
+        "burnout_altitude_agl_m": float(df["altitude_agl_m"][burn]),
+        "launch_mass_kg": float(df["mass_kg"][0]),
         "site_elevation_m": float(elev),
     }
     if "t_landing" in run:
@@ -166,12 +171,13 @@ def _summary(model: FlightModel, run: dict, df: pd.DataFrame) -> dict:
     return s
 
 
-def _warn_outside_table(setup, df: pd.DataFrame) -> None:
+def _warn_outside_table(setup, df: dict) -> None:
     """Warn when the ascent left the aerodynamic table's grid (it was clamped)."""
     table = getattr(setup.aero, "table", None)
     if table is None:
         return
-    up = df[df["phase"].isin(["rail", "boost", "coast"])]
+    flying = np.isin(df["phase"], ["rail", "boost", "coast"])
+    up = {k: df[k][flying] for k in ("mach", "alpha_deg")}
     m_lo, m_hi = table.mach_range
     a_lo, a_hi = table.alpha_range
     outside = []
@@ -185,7 +191,7 @@ def _warn_outside_table(setup, df: pd.DataFrame) -> None:
 
 
 def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
-             steps: Steps | None = None, jit: bool = False, descent: bool = False,
+             steps: Steps | None = None, jit="auto", descent: bool = False,
              model: FlightModel | None = None) -> Flight:
     """Fly ``setup`` to apogee (and optionally to landing).
 
@@ -201,8 +207,9 @@ def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
         A full parameter vector instead of ``parameters``.
     steps : Steps, optional
         Integrator discretisation.
-    jit : bool
-        Use C-compiled trajectory functions (cached on disk).
+    jit : bool or "auto"
+        Use C-compiled trajectory functions (cached on disk); ``"auto"`` (default):
+        compiled when cached, else the VM with a background compile for next time.
     descent : bool
         Continue to landing under the setup's parachutes (ballistic if none).
     model : FlightModel, optional
@@ -220,4 +227,4 @@ def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
     df = _table(model, run)
     _warn_outside_table(setup, df)
     return Flight(name=setup.name, parameters=params_mod.to_dict(p), summary_values=_summary(model, run, df),
-                  _table=df)
+                  _columns=df)

@@ -16,6 +16,9 @@ def pytest_configure(config):
     import tempfile
     if "IRONBARK_CACHE_DIR" not in os.environ:
         os.environ["IRONBARK_CACHE_DIR"] = tempfile.mkdtemp(prefix="ironbark-test-cache-")
+    # jit="auto" (the default) runs the VM and starts no background compilers in tests
+    # (CI time); tests of the compiled path ask for it explicitly.
+    os.environ.setdefault("IRONBARK_JIT", "vm")
     # Everything the tests (and the notebook kernels they start) write goes to temp dirs.
     for var, prefix in (("MPLCONFIGDIR", "mpl"), ("IPYTHONDIR", "ipython"), ("JUPYTER_RUNTIME_DIR", "jupyter")):
         if var not in os.environ:

@@ -24,9 +24,8 @@ import warnings
 from pathlib import Path
 
 import numpy as np
-from scipy.interpolate import make_interp_spline
 
-from ironbark_opt.aero.table import AeroTable, spline_degree
+from ironbark_opt.aero.table import AeroTable, GridSpline
 from ironbark_opt.errors import InputError, OutOfRangeWarning
 from ironbark_opt.validate import is_float
 
@@ -205,8 +204,11 @@ def _on_grid(mach, values, grid, path, name):
         warnings.warn(f"{path}: {name} covers Mach {mach[0]:g}..{mach[-1]:g} only; held constant "
                       f"outside to match the other curve's Mach range", OutOfRangeWarning,
                       stacklevel=3)
-    spline = make_interp_spline(mach, values, k=spline_degree(mach.size))
-    return spline(np.clip(grid, mach[0], mach[-1]))
+    # the same interpolating not-a-knot B-spline GridSpline uses, evaluated by CasADi
+    # (no SciPy import on the simulate path; agreement with SciPy's make_interp_spline
+    # measured in tests/unit/test_aero_importers.py)
+    spline = GridSpline([mach], values, name=name, axis_names=["mach"]).casadi_interpolant()
+    return np.asarray(spline(np.clip(grid, mach[0], mach[-1]).reshape(1, -1))).ravel()
 
 
 def from_cd_mach_csv(power_off_path, power_on_path=None, *, reference_area: float,

@@ -101,6 +101,13 @@ class AeroModel:
     jet_area_source: str = ""
 
     # -- tabulated geometry sums (speed) ----------------------------------------
+    def __getstate__(self):
+        """Pickle without the cached interpolant ``_sums_fn`` (rebuilt on first use), so
+        a pickle (the flight-model cache key) depends on the data, not on past use."""
+        state = dict(self.__dict__)
+        state.pop("_sums_fn", None)
+        return state
+
     def _sums_exact(self, mach):
         """(S0, S1, S2, Cl_cant, Clp) at numeric ``mach``: S_k = sum_i CN_alpha_i x_i^k."""
         comps = self.lift.components(mach, self.reference_area)

@@ -32,7 +32,6 @@ from pathlib import Path
 
 import casadi as ca
 import numpy as np
-from scipy.interpolate import NdBSpline, make_interp_spline
 
 from ironbark_opt import _math
 from ironbark_opt.errors import InputError, OutOfRangeWarning
@@ -82,20 +81,31 @@ class GridSpline:
         self._active = tuple(i for i, a in enumerate(axes) if a.size > 1)
         squeezed = values.reshape([a.size for a in axes if a.size > 1] or [1])
         self._degrees = tuple(spline_degree(axes[i].size) for i in self._active)
-        if not self._active:
-            self._numeric = None
-            self._constant = float(squeezed.ravel()[0])
-        else:
+        self._constant = None if self._active else float(squeezed.ravel()[0])
+        self._numeric = None     # the SciPy spline, fitted on the first numeric evaluation
+        self._casadi = None
+
+    def __getstate__(self):
+        # the fitted splines are caches, rebuilt on first use: a pickle (the flight-model
+        # cache key, a worker's copy) depends on the data only, not on what was evaluated
+        return {**self.__dict__, "_numeric": None, "_casadi": None}
+
+    # ------------------------------------------------------------------ numeric
+    def _scipy_spline(self):
+        """The SciPy ``NdBSpline`` (fitted once, on first use: SciPy's interpolate
+        module costs ~0.7 s to import and a symbolic-only caller never needs it)."""
+        if self._numeric is None:
+            from scipy.interpolate import NdBSpline, make_interp_spline
+            squeezed = self.values.reshape([self.axes[i].size for i in self._active])
             # tensor-product interpolation: one not-a-knot 1-D pass per axis
             coef, knots = squeezed, []
             for d, i in enumerate(self._active):
-                sp = make_interp_spline(axes[i], coef, k=self._degrees[d], axis=d)
+                sp = make_interp_spline(self.axes[i], coef, k=self._degrees[d], axis=d)
                 knots.append(sp.t)
                 coef = np.moveaxis(sp.c, 0, d)
             self._numeric = NdBSpline(tuple(knots), coef, self._degrees, extrapolate=False)
-        self._casadi = None
+        return self._numeric
 
-    # ------------------------------------------------------------------ numeric
     def evaluate(self, *coords, warn: bool = True):
         """Numeric value at ``coords`` (one per axis) with clamping. Numeric-only.
 
@@ -125,11 +135,11 @@ class GridSpline:
             if np.any(np.isnan(a)):
                 raise InputError(f"'{self.name}': {an} is NaN", field=an)
             clamped.append(np.clip(a, lo, hi))
-        if self._numeric is None:
+        if not self._active:
             out = np.full(arrays[0].shape, self._constant)
         else:
             points = np.stack([clamped[i].ravel() for i in self._active], axis=-1)
-            out = self._numeric(points).reshape(arrays[0].shape)
+            out = self._scipy_spline()(points).reshape(arrays[0].shape)
         return float(out) if scalar else out
 
     # ----------------------------------------------------------------- symbolic

@@ -19,7 +19,6 @@ from pathlib import Path
 from typing import Mapping
 
 import numpy as np
-import pandas as pd
 
 from ironbark_opt import params
 from ironbark_opt.analysis.distributions import DispersionSpec, load_spec
@@ -104,17 +103,19 @@ class Dispersion:
     distributions: Mapping[str, Mapping]
     stats: Mapping[str, Mapping[str, float]]
     extra: Mapping[str, object]
-    _table: pd.DataFrame = field(repr=False)
+    #: per-sample columns, name -> 1-D array (pandas is imported only by `to_dataframe`)
+    _table: Mapping[str, np.ndarray] = field(repr=False)
 
     def __repr__(self) -> str:
         a = self.stats["apogee_agl_m"]
         return (f"Dispersion({self.name!r}: {self.samples} samples, apogee {a['mean']:.1f} +/- {a['std']:.1f} m "
                 f"AGL, seed {self.seed})")
 
-    def to_dataframe(self) -> pd.DataFrame:
-        """One row per sample (a copy): dispersed parameters (unit-suffixed,
-        angles in degrees) and the outputs."""
-        return self._table.copy()
+    def to_dataframe(self):
+        """One row per sample (a new ``pandas.DataFrame``): dispersed parameters
+        (unit-suffixed, angles in degrees) and the outputs."""
+        import pandas as pd
+        return pd.DataFrame({k: np.array(v) for k, v in self._table.items()})
 
     def positions(self, which: str = "auto") -> tuple[np.ndarray, np.ndarray, str]:
         """(east [m], north [m], label) of landing points (``"landing"``),
@@ -126,7 +127,7 @@ class Dispersion:
         if which == "landing" and not self.descent:
             raise InputError("this Monte Carlo did not fly to landing (descent=False)", field="descent")
         t = self._table
-        return t[f"{which}_east_m"].to_numpy(), t[f"{which}_north_m"].to_numpy(), which
+        return np.array(t[f"{which}_east_m"]), np.array(t[f"{which}_north_m"]), which
 
     def to_dict(self) -> dict:
         """Statistics with unit-suffixed keys (no per-sample data)."""
@@ -189,7 +190,7 @@ def _check(samples, chunk, executor, target, band):
 
 def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: bool = False, target=None,
                band: float | None = None, chunk: int = 250, executor=None, progress: bool = True,
-               parameters: Mapping[str, float] | None = None, jit: bool = False, model=None,
+               parameters: Mapping[str, float] | None = None, jit="auto", model=None,
                output=None) -> Dispersion:
     """Fly ``samples`` dispersed copies of ``setup`` and collect statistics (numeric-only).
 
@@ -233,7 +234,7 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
     -------
     Dispersion
     """
-    from tqdm.auto import tqdm
+    from tqdm.autonotebook import tqdm   # tqdm.auto adds asyncio support (0.25 s import), unused here
 
     _check(samples, chunk, executor, target, band)
     if not isinstance(spec, DispersionSpec):
@@ -264,14 +265,14 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
         x_l = out["x_landing"]
         data.update(landing_time_s=out["t_landing"], landing_east_m=x_l[0],
                     landing_north_m=x_l[1], landing_distance_m=np.hypot(x_l[0], x_l[1]))
-    table = pd.DataFrame(data)
-    outputs = [c for c in table.columns if c.startswith(("apogee_", "rail_exit_", "landing_"))]
+    table = {k: np.asarray(v) for k, v in data.items()}
+    outputs = [c for c in table if c.startswith(("apogee_", "rail_exit_", "landing_"))]
     stats = {c: statistics(table[c]) for c in outputs}
     extra: dict[str, object] = {"apogee_ellipse": error_ellipse(x_a[0], x_a[1])}
     if descent:
         extra["landing_ellipse"] = error_ellipse(table["landing_east_m"], table["landing_north_m"])
     if target_agl is not None:
-        apo = table["apogee_agl_m"].to_numpy()
+        apo = table["apogee_agl_m"]
         extra.update(target_agl_m=float(target_agl), apogee_error_mean_m=float(apo.mean() - target_agl),
                      probability_above_target=float(np.mean(apo >= target_agl)))
         if band is not None:

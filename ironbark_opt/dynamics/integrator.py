@@ -114,11 +114,32 @@ def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float 
 
 
 # ----------------------------------------------------------------------------- JIT
+def cache_root() -> Path:
+    """``$IRONBARK_CACHE_DIR`` or ``~/.cache/ironbark`` (``$XDG_CACHE_HOME``)."""
+    base = os.environ.get("IRONBARK_CACHE_DIR")
+    return Path(base) if base else Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "ironbark"
+
+
 def default_cache_dir() -> Path:
     """Where compiled functions are kept: ``$IRONBARK_CACHE_DIR/jit`` or ~/.cache."""
-    base = os.environ.get("IRONBARK_CACHE_DIR")
-    root = Path(base) if base else Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "ironbark"
-    return root / "jit"
+    return cache_root() / "jit"
+
+
+def jit_mode(jit) -> bool | str:
+    """Normalise a ``jit`` argument: ``True`` (compile now), ``False`` (VM) or ``"auto"``.
+
+    ``"auto"`` (the default of ``simulate``, Monte Carlo and the CLI) uses a compiled
+    library when the cache has it and otherwise the VM, compiling in a detached
+    background process for the next run, so a first run is never slower than the
+    VM.  The environment variable ``IRONBARK_JIT`` overrides ``"auto"``: ``vm``
+    (never compile; the test suite sets it), ``always`` (compile now).
+    """
+    if jit is None or (isinstance(jit, str) and jit == "auto"):
+        env = os.environ.get("IRONBARK_JIT", "auto").lower()
+        return {"vm": False, "0": False, "always": True, "1": True}.get(env, "auto")
+    if isinstance(jit, str):
+        raise ValueError(f"jit must be True, False or 'auto', got {jit!r}")
+    return bool(jit)
 
 
 def compiler_available() -> bool:
@@ -133,18 +154,30 @@ def _compiler() -> str | None:
     return None
 
 
-def compile_function(func: ca.Function, cache_dir: Path | None = None) -> ca.Function:
+def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: str | None = None,
+                     background: bool = False) -> ca.Function:
     """C-compiled copy of ``func`` loaded with ``casadi.external``.
 
-    The generated C source is hashed (SHA-256) and the shared library is kept
-    in ``cache_dir`` under that hash, so the second run (same model, same
-    tables) loads it instantly instead of paying the compile again.  Falls
-    back to ``func`` itself (the interpreted VM) when no compiler exists.
+    Without ``key`` the generated C source is hashed (SHA-256) and the shared
+    library is kept in ``cache_dir`` under that hash, so the second run (same
+    model, same tables) loads it instead of paying the compile again.  With
+    ``key`` (a digest of everything ``func`` depends on, see
+    :mod:`~ironbark_opt.dynamics.model_cache`) the library is named by it and a
+    cached one is loaded without generating code at all.
+
+    ``background``: when the library is not cached yet, start the compiler in a
+    detached process (it outlives this one and renames its output into place
+    atomically) and return ``func`` itself, the VM, meanwhile.  Falls back to
+    ``func`` when no compiler exists or compiling fails.
     """
     cc = _compiler()
     if cc is None:
         return func
     cache = Path(cache_dir) if cache_dir else default_cache_dir()
+    if key is not None:
+        lib = cache / f"{func.name()}_{key}.so"
+        if lib.exists():
+            return ca.external(func.name(), str(lib))
     cache.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         cname = f"{func.name()}.c"
@@ -152,15 +185,45 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None) -> ca.Fun
         gen.add(func)
         src_path = Path(tmp) / cname
         gen.generate(str(Path(tmp)) + os.sep)
-        digest = hashlib.sha256(src_path.read_bytes() + ca.__version__.encode()).hexdigest()[:20]
-        lib = cache / f"{func.name()}_{digest}.so"
-        if not lib.exists():
-            tmp_lib = Path(tmp) / lib.name
-            cmd = [cc, "-O2", "-shared", "-fPIC", str(src_path), "-o", str(tmp_lib), "-lm"]
-            proc = subprocess.run(cmd, capture_output=True, text=True)
-            if proc.returncode != 0:
-                return func
-            staged = cache / f".{lib.name}.{os.getpid()}.tmp"
-            shutil.copyfile(tmp_lib, staged)
-            os.replace(staged, lib)          # atomic: never a half-written library
+        if key is None:
+            digest = hashlib.sha256(src_path.read_bytes() + ca.__version__.encode()).hexdigest()[:20]
+            lib = cache / f"{func.name()}_{digest}.so"
+        if lib.exists():
+            return ca.external(func.name(), str(lib))
+        if background:
+            _compile_detached(cc, src_path, lib)
+            return func
+        tmp_lib = Path(tmp) / lib.name
+        cmd = [cc, "-O2", "-shared", "-fPIC", str(src_path), "-o", str(tmp_lib), "-lm"]
+        proc = subprocess.run(cmd, capture_output=True, text=True)
+        if proc.returncode != 0:
+            return func
+        staged = cache / f".{lib.name}.{os.getpid()}.tmp"
+        shutil.copyfile(tmp_lib, staged)
+        os.replace(staged, lib)          # atomic: never a half-written library
     return ca.external(func.name(), str(lib))
+
+
+#: a background compile whose source is younger than this is taken as still running [s]
+_PENDING_S = 600.0
+
+
+def _compile_detached(cc: str, src: Path, lib: Path) -> None:
+    """Compile ``src`` to ``lib`` in a detached, low-priority process (at most one per library)."""
+    import time
+    pending = lib.with_name(f".{lib.stem}.c")
+    try:
+        if pending.exists() and time.time() - pending.stat().st_mtime < _PENDING_S:
+            return
+        shutil.copyfile(src, pending)
+    except OSError:
+        return
+    staged = lib.with_name(f".{lib.name}.{os.getpid()}.tmp")
+    script = '"$0" -O2 -shared -fPIC "$1" -o "$2" -lm && mv -f "$2" "$3"; rm -f "$1" "$2"'
+    nice = shutil.which("nice")
+    cmd = ([nice, "-n", "10"] if nice else []) + ["sh", "-c", script, cc, str(pending), str(staged), str(lib)]
+    try:
+        subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         start_new_session=True, close_fds=True)
+    except OSError:
+        pending.unlink(missing_ok=True)

@@ -17,6 +17,7 @@ expressions.
 """
 from __future__ import annotations
 
+import hashlib
 import math
 from dataclasses import dataclass
 
@@ -26,7 +27,8 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics import rhs as rhs_mod
 from ironbark_opt.dynamics.frames import launch_quaternion, rail_direction_l, rotation_matrix
-from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, phase_trajectory, rk4_step
+from ironbark_opt.dynamics import model_cache
+from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, jit_mode, phase_trajectory, rk4_step
 from ironbark_opt.errors import InputError, SolverError
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
@@ -69,26 +71,57 @@ class FlightModel:
     ----------
     setup : FlightSetup
     steps : Steps, optional
-    jit : bool
+    jit : bool or "auto"
         Compile the trajectory Functions to C (cached on disk); falls back
-        to the VM when no C compiler is available.
+        to the VM when no C compiler is available.  ``"auto"``: the compiled
+        library if the cache has it, else the VM now and a background compile
+        for the next run (:func:`~ironbark_opt.dynamics.integrator.jit_mode`).
+
+    A built model (Functions and RK4 grid) is kept on disk
+    (:mod:`~ironbark_opt.dynamics.model_cache`); the same setup is loaded, not rebuilt.
     """
 
-    def __init__(self, setup, steps: Steps | None = None, *, jit: bool = False):
+    def __init__(self, setup, steps: Steps | None = None, *, jit=False):
         self.setup = setup
         self.steps = steps or Steps()
-        self.jit = jit
-        burn = float(setup.motor.burn_time) * float(setup.nominal.get("burn_time_scale", 1.0))
-        self.n_boost = max(20, int(math.ceil(burn / self.steps.dt_boost)))
-        self.rhs = {ph: rhs_mod.build(setup, ph) for ph in ("rail", "boost", "coast")}
-        self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
+        self.jit = jit_mode(jit)
         self.trajectory, self._run = {}, {}
-        self.n_coast = None              # chosen from the nominal flight's stiffness below
-        self.coast_grading = 1.0
-        self._set_trajectory("rail", self.steps.n_rail)
-        self._set_trajectory("boost", self.n_boost)
-        self._build_events()
-        self._choose_grid(setup.nominal_parameters())
+        self._key = model_cache.model_key(setup, self.steps)
+        cached = model_cache.load(self._key)
+        if cached is not None:
+            self.rhs = {ph: cached[f"rhs_{ph}"] for ph in ("rail", "boost", "coast")}
+            self.step = {ph: cached[f"step_{ph}"] for ph in ("rail", "boost", "coast")}
+            self.n_boost, self.n_coast, self.coast_grading = cached["discretisation"]
+            for ph in ("rail", "boost", "coast"):
+                self.trajectory[ph] = self._run[ph] = cached[f"traj_{ph}"]
+            self._build_events(cached["apex"])
+        else:
+            burn = float(setup.motor.burn_time) * float(setup.nominal.get("burn_time_scale", 1.0))
+            self.n_boost = max(20, int(math.ceil(burn / self.steps.dt_boost)))
+            self.rhs = {ph: rhs_mod.build(setup, ph) for ph in ("rail", "boost", "coast")}
+            self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
+            self.n_coast = None              # chosen from the nominal flight's stiffness below
+            self.coast_grading = 1.0
+            self._set_trajectory("rail", self.steps.n_rail)
+            self._set_trajectory("boost", self.n_boost)
+            self._build_events()
+            self._choose_grid(setup.nominal_parameters())
+            model_cache.store(self._key, {**{f"rhs_{ph}": f for ph, f in self.rhs.items()},
+                                          **{f"step_{ph}": f for ph, f in self.step.items()},
+                                          **{f"traj_{ph}": f for ph, f in self.trajectory.items()},
+                                          "apex": self._apex, "discretisation": self.discretisation()})
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = self._compiled(self.trajectory[ph])
+        self._apogee_run = self._compiled(self._apogee_event)
+
+    def _compiled(self, func: ca.Function) -> ca.Function:
+        """``func`` compiled as ``self.jit`` asks (the VM Function itself when it says no)."""
+        if not self.jit:
+            return func
+        key = None
+        if self._key is not None:
+            key = hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
+        return compile_function(func, key=key, background=self.jit == "auto")
 
     def _choose_grid(self, p):
         """Fix the RK4 grid from the *nominal* flight (deterministic: the same
@@ -115,6 +148,8 @@ class FlightModel:
         self.n_boost, self.n_coast, self.coast_grading = int(n_boost), int(n_coast), float(coast_grading)
         self._set_trajectory("boost", self.n_boost)
         self._set_trajectory("coast", self.n_coast)
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = self._compiled(self.trajectory[ph])
 
     @property
     def coast_fractions(self) -> np.ndarray:
@@ -124,8 +159,8 @@ class FlightModel:
     def _set_trajectory(self, phase: str, n: int):
         grading = self.coast_grading if phase == "coast" else 1.0
         self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
-        self._run[phase] = compile_function(self.trajectory[phase]) if self.jit else self.trajectory[phase]
-        for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0] == phase]:
+        self._run[phase] = self.trajectory[phase]      # compiled (if asked) once the grid is fixed
+        for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0].split(":")[0] == phase]:
             del self._map_cache[key]
 
     def stable_step(self, f: ca.Function, x, t, p) -> float:
@@ -207,7 +242,7 @@ class FlightModel:
         travel = ca.dot(x[0:3], rail_direction_l(P["inclination"], P["heading"]))
         return travel - (P["rail_length"] - self.setup.rail_exit_offset)
 
-    def _build_events(self):
+    def _build_events(self, apex: ca.Function | None = None):
         ps = ca.SX.sym("p", params.SIZE)
         P = params.unpack(ps)
         self._launch = ca.Function("launch", [ps], [self.initial_state(ps),
@@ -219,13 +254,30 @@ class FlightModel:
                                             {"abstol": 1e-10, "max_iter": 50, "error_on_fail": True})
         x = ca.SX.sym("x", 13)
         self.vz_l = ca.Function("vz_l", [x], [(rotation_matrix(x[6:10]) @ x[3:6])[2]])
-        h = ca.SX.sym("h")
-        t = ca.SX.sym("t")
-        ps = ca.SX.sym("p", params.SIZE)
-        vz = self.vz_l(self.step["coast"](x, t, h, ps))
-        self._apex = ca.Function("apex", [x, t, h, ps], [vz, ca.jacobian(vz, h)])
-        if self.jit:
-            self._apex = compile_function(self._apex)
+        if apex is None:
+            h = ca.SX.sym("h")
+            t = ca.SX.sym("t")
+            ps = ca.SX.sym("p", params.SIZE)
+            vz = self.vz_l(self.step["coast"](x, t, h, ps))
+            apex = ca.Function("apex", [x, t, h, ps], [vz, ca.jacobian(vz, h)])
+        self._apex = apex
+        self._apogee_run = self._apogee_event = self._apogee_function(apex)
+
+    def _apogee_function(self, apex: ca.Function, iterations: int = 5) -> ca.Function:
+        """``(x_k, t_k, h0, dt, p) -> (h, x_apogee)``: the apogee inside a coast step.
+
+        :meth:`refine_in_step`'s Newton iterations on the step length (the same
+        operations, so the same bits) and the step to apogee, in one Function
+        (one call, compiled with the model) instead of a Python loop of calls.
+        """
+        x, t, h0, dt = ca.MX.sym("x", 13), ca.MX.sym("t"), ca.MX.sym("h0"), ca.MX.sym("dt")
+        p = ca.MX.sym("p", params.SIZE)
+        h = h0
+        for _ in range(iterations):
+            val, der = apex(x, t, h, p)
+            h = ca.fmin(ca.fmax(h - val / ca.if_else(der == 0, 1.0, der), 0.0), dt)
+        x_a = self.step["coast"](x, t, h, p)
+        return ca.Function("apogee_event", [x, t, h0, dt, p], [h, x_a], ["x", "t", "h0", "dt", "p"], ["h", "x_a"])
 
     # ------------------------------------------------------------------ numeric
     def _rail_travel(self, t_r: float, p: np.ndarray, geom) -> tuple[float, np.ndarray]:
@@ -246,6 +298,11 @@ class FlightModel:
         then secant steps (no derivative needed, so it runs on the compiled
         functions too), with a bracketing Illinois fallback.
         """
+        return self._rail_exit(p)[0]
+
+    def _rail_exit(self, p: np.ndarray) -> tuple[float, np.ndarray]:
+        """(rail-exit time [s], rail-phase states at it (13 x n_rail)): see :meth:`rail_exit`;
+        the states of the last residual evaluation are kept, not integrated again."""
         exit_distance = p[params.index("rail_length")] - self.setup.rail_exit_offset
         if exit_distance <= 0:
             raise InputError(f"rail length {p[params.index('rail_length')]:.3f} m is shorter than the "
@@ -269,22 +326,22 @@ class FlightModel:
             dt = hi / (travel.size - 1)
             t_a = (k - 1) * dt + dt * (-travel[k - 1]) / (travel[k] - travel[k - 1])
             t_b = t_a * (1 + 1e-4)
-            g_a = self._rail_travel(t_a, p, geom)[0]
+            g_a, X_a = self._rail_travel(t_a, p, geom)
             for _ in range(8):                      # secant from the interpolated guess
                 if abs(g_a) < 1e-10:
-                    return t_a
-                g_b = self._rail_travel(t_b, p, geom)[0]
+                    return t_a, X_a
+                g_b, X_b = self._rail_travel(t_b, p, geom)
                 if g_b == g_a:
                     break
-                t_a, g_a, t_b = t_b, g_b, t_b - g_b * (t_b - t_a) / (g_b - g_a)
+                t_a, g_a, X_a, t_b = t_b, g_b, X_b, t_b - g_b * (t_b - t_a) / (g_b - g_a)
                 if not lo <= t_b <= hi:
                     break
         side = 0                                    # Illinois regula falsi fallback
         for _ in range(60):
             t = hi - g_hi * (hi - lo) / (g_hi - g_lo)
-            g = self._rail_travel(t, p, geom)[0]
+            g, X = self._rail_travel(t, p, geom)
             if abs(g) < 1e-10 or hi - lo < 1e-12:
-                return t
+                return t, X
             if g > 0:
                 hi, g_hi = t, g
                 if side == 1:
@@ -316,12 +373,11 @@ class FlightModel:
         if p.size != params.SIZE:
             raise InputError(f"parameter vector has {p.size} entries, expected {params.SIZE}")
         x0 = self._x0(p)
-        t_r = self.rail_exit(p)
+        t_r, X_rail = self._rail_exit(p)
         t_b = float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
         if t_r >= t_b:
             raise InputError(f"motor burns out ({t_b:.2f} s) before rail exit ({t_r:.2f} s)",
                              field="motor")
-        X_rail = np.array(self._run["rail"](x0, 0.0, t_r, p))
         x_r = X_rail[:, -1].copy()
         X_boost = np.array(self._run["boost"](x_r, t_r, t_b, p))
         x_b = X_boost[:, -1]
@@ -348,9 +404,8 @@ class FlightModel:
         t_k = t_b + span * fr[k]
         vz_k = vz_b if k == 0 else vz[k - 1]
         h0 = dt_c * vz_k / (vz_k - vz[k]) if vz_k != vz[k] else dt_c
-        h = float(self.refine_in_step(self._mapped("apex", 1), x_k[:, None], np.array([t_k]), np.array([h0]),
-                                      np.array([dt_c]), p[:, None])[0])
-        x_a = np.array(self._mapped("step", 1)(x_k, t_k, h, p)).ravel()
+        h, x_a = self._apogee_run(x_k, t_k, h0, dt_c, p)
+        h, x_a = float(h), np.array(x_a).ravel()
         t_a = t_k + h
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
         t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], t_r + (t_b - t_r) * np.arange(1, n_b + 1) / n_b,
@@ -364,10 +419,24 @@ class FlightModel:
         return out
 
     # ------------------------------------------------------------------ batches
+    def _batch_function(self, phase: str) -> ca.Function:
+        """The phase trajectory returning only what :meth:`run_batch` reads (fewer
+        numbers to convert): rail -> (positions, final state), boost -> final state,
+        coast -> (states, vertical velocities)."""
+        x0, t0, t1 = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("t1")
+        p = ca.MX.sym("p", params.SIZE)
+        X = self._run[phase](x0, t0, t1, p)
+        outs = {"rail": [X[0:3, :], X[:, -1]], "boost": [X[:, -1]],
+                "coast": [X, self.vz_l.map(X.size2())(X)]}[phase]
+        return ca.Function(f"{phase}_batch", [x0, t0, t1, p], outs)
+
     def _mapped(self, key, n):
         cache = self.__dict__.setdefault("_map_cache", {})
         if (key, n) not in cache:
-            base = {"launch": self._launch, "apex": self._apex, "vz": self.vz_l,
+            if key.endswith(":batch"):
+                cache[(key, n)] = self._batch_function(key.split(":")[0]).map(n, "thread", 2)
+                return cache[(key, n)]
+            base = {"launch": self._launch, "apogee": self._apogee_run, "vz": self.vz_l,
                     "step": self.step["coast"]}.get(key) or self._run[key]
             cache[(key, n)] = base.map(n, "thread", 2) if key in self._run else base.map(n)
         return cache[(key, n)]
@@ -398,12 +467,13 @@ class FlightModel:
             raise InputError("rail length shorter than the nozzle-to-guide distance in some samples",
                              field="rail_length")
         burn = float(self.setup.motor.burn_time) * P[params.index("burn_time_scale")]
-        rail, nr = self._mapped("rail", n), self.steps.n_rail
+        rail, nr = self._mapped("rail:batch", n), self.steps.n_rail
 
         def travel(t):
-            # mapped outputs are blocks of nr columns per sample: (13, n, nr)
-            X = np.array(rail(x0, 0.0, t[None, :], P)).reshape(13, n, nr)
-            return np.einsum("in,inj->nj", e, X[0:3]) - exit_distance[:, None], X
+            # mapped outputs are blocks of nr columns per sample: positions (3, n, nr), final states (13, n)
+            pos, last = rail(x0, 0.0, t[None, :], P)
+            pos = np.array(pos).reshape(3, n, nr)
+            return np.einsum("in,inj->nj", e, pos) - exit_distance[:, None], np.array(last)
 
         hi = np.minimum(0.5, burn)
         for _ in range(10):
@@ -430,14 +500,13 @@ class FlightModel:
         if np.any(np.abs(g_a) > 1e-6):
             raise SolverError("rail exit did not converge for some samples")
         t_r = t_a
-        x_r = travel(t_r)[1][:, :, -1]
-        nb = self.n_boost
-        x_b = np.array(self._mapped("boost", n)(x_r, t_r[None, :], burn[None, :], P)).reshape(13, n, nb)[:, :, -1]
+        x_r = travel(t_r)[1]
+        x_b = np.array(self._mapped("boost:batch", n)(x_r, t_r[None, :], burn[None, :], P))
         vz_b = np.array(self._mapped("vz", n)(x_b)).ravel()
         t_end = burn + vz_b / G0 + 2.0
         nc = self.n_coast
-        Xc = np.array(self._mapped("coast", n)(x_b, burn[None, :], t_end[None, :], P)).reshape(13, n, nc)
-        vz = np.array(self._mapped("vz", n * nc)(Xc.reshape(13, n * nc))).reshape(n, nc)
+        Xc, vz = self._mapped("coast:batch", n)(x_b, burn[None, :], t_end[None, :], P)
+        Xc, vz = np.array(Xc).reshape(13, n, nc), np.array(vz).reshape(n, nc)
         below = vz <= 0
         if not np.all(below.any(axis=1)):
             raise SolverError("apogee not reached within the coast horizon for some samples")
@@ -450,8 +519,8 @@ class FlightModel:
         vz_k = np.where(kc == 0, vz_b, vz[idx, np.maximum(kc - 1, 0)])
         vz_end = vz[idx, kc]
         h = dtc * vz_k / np.where(vz_k != vz_end, vz_k - vz_end, 1.0)
-        h = self.refine_in_step(self._mapped("apex", n), x_k, t_k, h, dtc, P)
-        x_a = np.array(self._mapped("step", n)(x_k, t_k[None, :], h[None, :], P))
+        h, x_a = self._mapped("apogee", n)(x_k, t_k[None, :], h[None, :], dtc[None, :], P)
+        h, x_a = np.array(h).ravel(), np.array(x_a)
         out = dict(apogee_agl=x_a[2], t_apogee=t_k + h, t_rail=t_r,
                    rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
         if descent:
@@ -465,8 +534,10 @@ class FlightModel:
         Newton on the step length with the derivative from ``func``'s second
         output, clipped to the step, a fixed number of iterations (quadratic
         convergence from the linear guess reaches round-off in 3).  All
-        columns at once; :meth:`run` and :meth:`run_batch` both call this, so
-        their events agree to the last bit.
+        columns at once (the descent's ground and deployment crossings);
+        apogee uses the same iteration inside one Function
+        (:meth:`_apogee_function`), shared by :meth:`run` and :meth:`run_batch`
+        so their events agree to the last bit.
         """
         for _ in range(iterations):
             val, der = (np.array(v).ravel() for v in func(x_k, t_k[None, :], h[None, :], P))
@@ -580,12 +651,27 @@ class FlightModel:
     def outputs(self, t, x, phase, p) -> np.ndarray:
         """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples."""
         y = np.zeros((len(rhs_mod.OUTPUT_NAMES), t.size))
+        p_col = np.asarray(p, dtype=float).reshape(-1, 1)
         for ph in np.unique(phase):
             idx = np.nonzero(phase == ph)[0]
-            f = self.rhs[ph] if ph in self.rhs else self._stage_rhs[ph]
-            fm = f.map(idx.size)
-            y[:, idx] = np.array(fm(x[:, idx], t[idx][None, :], np.repeat(p[:, None], idx.size, axis=1))[1])
+            y[:, idx] = np.array(self._outputs_function(ph, idx.size)(x[:, idx], t[idx][None, :], p_col))
         return y
+
+    def _outputs_function(self, phase: str, n: int) -> ca.Function:
+        """``(X (13 x n), t (1 x n), p) -> Y``: the phase's output rows mapped over n
+        samples; built once per (phase, n) and kept (``simulate`` calls it on every run)."""
+        cache = self.__dict__.setdefault("_out_cache", {})
+        if (phase, n) not in cache:
+            base = cache.get(phase)
+            if base is None:
+                f = self.rhs[phase] if phase in self.rhs else self._stage_rhs[phase]
+                xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", params.SIZE)
+                base = ca.Function(f"outputs_{phase}", [xs, ts, ps], [f(xs, ts, ps)[1]])
+                if phase in self.rhs:
+                    base = self._compiled(base)
+                cache[phase] = base
+            cache[(phase, n)] = base.map(n)
+        return cache[(phase, n)]
 
 
 def _final_state(model: FlightModel, p, T, t_rail_guess: float):

@@ -27,7 +27,6 @@ from typing import Mapping
 
 import casadi as ca
 import numpy as np
-import pandas as pd
 
 from ironbark_opt import params
 from ironbark_opt.dynamics.model import _final_state
@@ -83,7 +82,9 @@ class BallastSolution:
         out["parameters"] = dict(self.parameters)
         return out
 
-    def to_dataframe(self) -> pd.DataFrame:
+    def to_dataframe(self):
+        import pandas as pd   # imported here: 0.4-1 s that the command line does not need
+
         return pd.DataFrame([{k: v for k, v in self.to_dict().items() if k not in ("parameters", "active")}])
 
     def summary(self) -> str:

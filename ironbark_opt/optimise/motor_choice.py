@@ -20,7 +20,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, Sequence
 
-import pandas as pd
 
 from ironbark_opt.errors import InputError, IronbarkError
 from ironbark_opt.optimise.ballast import BallastSolution, solve_ballast
@@ -102,7 +101,9 @@ class MotorRanking:
         """Best feasible solution (None when no candidate can hit the target)."""
         return self.solutions[0] if self.solutions and self.solutions[0].feasible else None
 
-    def to_dataframe(self) -> pd.DataFrame:
+    def to_dataframe(self):
+        import pandas as pd   # imported here: 0.4-1 s that the command line does not need
+
         rows = []
         for rank, sol in enumerate(self.solutions, 1):
             v = sol.values

@@ -18,7 +18,9 @@ UNIT_SUFFIXES = ("_m", "_s", "_kg", "_mps", "_mps2", "_Pa", "_cal", "_N", "_Ns",
 
 
 def _leaf_commands(group, prefix=()):
-    for name, cmd in group.commands.items():
+    ctx = click.Context(group)
+    for name in group.list_commands(ctx):
+        cmd = group.get_command(ctx, name)
         if isinstance(cmd, click.Group):
             yield from _leaf_commands(cmd, prefix + (name,))
         else:

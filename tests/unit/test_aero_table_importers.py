@@ -159,3 +159,24 @@ def test_plain_alpha_with_unit_argument(tmp_path):
     t = from_coefficient_csv(p, reference_area=1.0, reference_length=1.0, moment_reference_x=0.0,
                              alpha_unit="deg")
     assert t.alpha_range[1] == pytest.approx(np.radians(4))
+
+
+def test_resampling_spline_is_scipys_not_a_knot_spline():
+    """The power-on curve is resampled onto the power-off Mach grid by CasADi's B-spline
+    (no SciPy import on the simulate path); it must be the interpolating not-a-knot spline
+    SciPy's make_interp_spline fits (the independent reference), to 1e-9 relative."""
+    from scipy.interpolate import make_interp_spline
+
+    from ironbark_opt.aero.importers import _on_grid
+    from ironbark_opt.aero.table import spline_degree
+    raw = np.loadtxt(DATA / "calisto_power_on.csv", delimiter=",")
+    grid = np.loadtxt(DATA / "calisto_power_off.csv", delimiter=",")[:, 0]
+    for n in (2, 3, raw.shape[0]):           # linear (2, 3 points) and cubic splines
+        mach, cd = raw[:n, 0], raw[:n, 1]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            got = _on_grid(mach, cd, grid, "power_on.csv", "cd")
+        ref = make_interp_spline(mach, cd, k=spline_degree(n))(np.clip(grid, mach[0], mach[-1]))
+        err = float(np.max(np.abs(got - ref) / np.abs(ref)))
+        print(f"{n} points: max relative difference CasADi vs SciPy {err:.2e} (tolerance 1e-9)")
+        assert err < 1e-9

@@ -36,3 +36,76 @@ def test_without_compiler_the_vm_is_used(monkeypatch):
     f = ca.Function("sq", [x], [x * x])
     assert compile_function(f) is f
     assert float(f(3.0)) == 9.0
+
+
+@pytest.mark.skipif(not compiler_available(), reason="no C compiler on this machine")
+def test_compiled_and_vm_agree_to_1e_9_relative(tmp_path, monkeypatch):
+    """Every sample of the flight (states and derived outputs), compiled vs the VM."""
+    from ironbark_opt.flight import simulate
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    vm = simulate(setup, jit=False).to_dataframe()
+    cc = simulate(setup, jit=True).to_dataframe()
+    cols = [c for c in vm.columns if c != "phase"]
+    a, b = vm[cols].to_numpy(), cc[cols].to_numpy()
+    scale = np.maximum(np.abs(a).max(axis=0), 1e-300)            # per column
+    err = float(np.max(np.abs(a - b) / scale))
+    print(f"{a.shape[0]} samples x {len(cols)} columns: max relative difference {err:.2e} (tolerance 1e-9)")
+    assert err < 1e-9
+
+
+@pytest.mark.skipif(not compiler_available(), reason="no C compiler on this machine")
+def test_auto_flies_the_vm_now_and_compiles_in_the_background(tmp_path, monkeypatch):
+    import time
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("IRONBARK_JIT", "auto")
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    p = setup.nominal_parameters()
+    first = FlightModel(setup, jit="auto")
+    assert first._run["coast"] is first.trajectory["coast"]      # nothing cached: the VM
+    ref = first.run(p)
+    deadline = time.time() + 240
+    while len(list((tmp_path / "jit").glob("*.so"))) < 4 and time.time() < deadline:
+        time.sleep(0.5)
+    second = FlightModel(setup, jit="auto")
+    assert second._run["coast"] is not second.trajectory["coast"]  # the library the background built
+    got = second.run(p)
+    err = abs(got["x_apogee"][2] - ref["x_apogee"][2]) / ref["x_apogee"][2]
+    print(f"apogee VM {ref['x_apogee'][2]:.9f} m, background-compiled {got['x_apogee'][2]:.9f} m ({err:.1e})")
+    assert err < 1e-9
+
+
+def test_cached_model_flies_bit_identically(tmp_path, monkeypatch):
+    """The second build loads the stored Functions and grid; the flight is the same to the bit."""
+    from ironbark_opt.dynamics import model_cache
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    built = FlightModel(setup)
+    key = model_cache.model_key(setup, built.steps)
+    assert model_cache.load(key) is not None
+    loaded = FlightModel(setup)
+    assert loaded.discretisation() == built.discretisation()
+    p = setup.nominal_parameters(ballast_mass=0.3)
+    a, b = built.run(p), loaded.run(p)
+    assert np.array_equal(a["x"], b["x"]) and a["t_apogee"] == b["t_apogee"]
+    other = load_setup(ROOT / "examples/calisto/calisto.toml", rail_exit="aft_button")
+    assert model_cache.model_key(other, built.steps) != key         # another setup, another key
+
+
+def test_batch_columns_equal_single_runs(tmp_path, monkeypatch):
+    """run_batch (only the numbers it needs leave CasADi) flies each column as run() does;
+    they differ only by the rail-exit secant's round-off (its iteration count differs
+    between one sample and a batch; 6e-12 m at the starting commit too)."""
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    model = FlightModel(setup)
+    P = np.column_stack([setup.nominal_parameters(ballast_mass=m, drag_scale=d)
+                         for m, d in ((0.0, 1.0), (0.8, 1.05), (2.0, 0.95))])
+    batch = model.run_batch(P)
+    worst = 0.0
+    for j in range(P.shape[1]):
+        one = model.run(P[:, j])
+        worst = max(worst, abs(batch["t_apogee"][j] - one["t_apogee"]) / one["t_apogee"],
+                    float(np.max(np.abs(batch["x_apogee"][:, j] - one["x_apogee"]))) / one["x_apogee"][2])
+    print(f"apogees {batch['apogee_agl']} m: batch vs single runs {worst:.1e} relative (tolerance 1e-12)")
+    assert worst < 1e-12

@@ -1,0 +1,273 @@
+"""Every ratio of issue 16's "Done when", measured in one go.
+
+Whole commands (fresh processes, run in turn round after round, medians of the
+per-round ratios, so a comparison holds while the shared machine's speed
+drifts), against the import floor ``python -c "import casadi, numpy"``:
+
+- ``simulate`` / floor (goal <= 3);
+- cold ``ballast`` / ``simulate`` (goal <= 1.3);
+- ``ballast`` ranking 10 motors / ``simulate`` (goal <= 2);
+- 1000-sample ``montecarlo`` / ``simulate`` (goal <= 2).
+
+"Cold" = a fresh process with the on-disk caches (built flight models,
+compiled libraries) in the state a user has after the first run of that rocket;
+the first run with empty caches is printed too.  Bytecode is cached the way a
+normal install does (``PYTHONPYCACHEPREFIX`` in a temp dir), even where the
+environment sets ``PYTHONDONTWRITEBYTECODE``.
+
+In-process:
+
+- one compiled Calisto trajectory (``FlightModel.run``) against the
+  operation-count limit (735 RK4 steps x 650-1950 flops ~ 1.1e6 flops ~ 0.4 ms)
+  (goal <= 3x) and against RocketPy's ``Flight`` (goal >= 300x);
+- a warm ballast solve against a bracketing root-finder (Illinois regula falsi)
+  over RocketPy flights to the same 0.5 m (goal >= 20x; RocketPy's ballast is
+  added as dry mass at the dry CG, which RocketPy can express).
+
+Optional ``--baseline CHECKOUT`` (e.g. ``git worktree add /tmp/base 9829aad``):
+the first ``simulate`` of a new rocket (empty caches) here against the baseline's
+VM path, in turn; with ``--aero`` also ``aero build`` of the Kestrel example at
+its default mesh in both (slow: minutes).
+
+RocketPy parts need ``pip install -e .[bench]``; they are skipped without it.
+
+Run: ``python benchmarks/bench_commands.py [--runs 5] [--baseline /tmp/base [--aero]]``.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "benchmarks"))
+
+CALISTO = ROOT / "examples" / "calisto" / "calisto.toml"
+SPEC = ROOT / "examples" / "calisto" / "dispersions.toml"
+KESTREL = "examples/kestrel/kestrel.toml"
+MOTORS = ROOT / "tests" / "data" / "motors"
+CANDIDATES = ["Cesaroni_M1670.eng", "Cesaroni_7579M1520-P.eng", "Cesaroni_6438M1300-P.eng", "AeroTech_M1340W.eng",
+              "AeroTech_M1939W.eng", "AeroTech_M2100G.eng", "Cesaroni_8088M1790-P.eng", "AMW_6774M2050-P.eng",
+              "Loki_M1378LR.eng", "AeroTech_M1845NT.eng"]
+TARGET = "3000m"
+FLOPS_LIMIT_S = 0.4e-3          # 1.1e6 flops of one trajectory at ~2.75 Gflop/s (issue 16)
+CLI = [sys.executable, "-m", "ironbark_opt.cli"]
+
+
+def commands() -> dict[str, list[str]]:
+    motors = [a for name in CANDIDATES for a in ("--motor", str(MOTORS / name))]
+    return {
+        "floor": [sys.executable, "-c", "import casadi, numpy"],
+        "simulate": CLI + ["simulate", str(CALISTO), "--json"],
+        "ballast": CLI + ["ballast", str(CALISTO), "--target", TARGET, "--json"],
+        "rank10": CLI + ["ballast", str(CALISTO), "--target", TARGET, "--json"] + motors,
+        "mc1000": CLI + ["montecarlo", str(CALISTO), "--spec", str(SPEC), "--samples", "1000", "--json"],
+    }
+
+
+def environment(cache: Path, pyc: Path, root: Path = ROOT) -> dict:
+    env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    env.update(PYTHONPATH=str(root), PYTHONPYCACHEPREFIX=str(pyc), IRONBARK_CACHE_DIR=str(cache))
+    env.pop("IRONBARK_JIT", None)
+    return env
+
+
+def timed(cmd, env, cwd=ROOT, timeout=900) -> tuple[float, float]:
+    """(wall [s], cpu of the process and its waited-for children [s]) of one run."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, env=env, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                          timeout=timeout)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if proc.returncode != 0:
+        raise RuntimeError(f"{' '.join(map(str, cmd[:6]))} ... exit {proc.returncode}: "
+                           f"{proc.stderr.decode()[-400:]}")
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def wait_for_background_compiles(cache: Path, limit_s: float = 300.0) -> None:
+    """Wait until no detached compile (``.<lib>.c`` in the JIT cache) is pending."""
+    deadline = time.time() + limit_s
+    while time.time() < deadline and list((cache / "jit").glob(".*.c")):
+        time.sleep(0.5)
+
+
+def whole_commands(runs: int) -> None:
+    cmds = commands()
+    with tempfile.TemporaryDirectory(prefix="ironbark-bench-") as tmp:
+        cache, pyc = Path(tmp) / "cache", Path(tmp) / "pyc"
+        env = environment(cache, pyc)
+        print("first runs (empty caches; bytecode cached):")
+        timed(cmds["floor"], env)
+        for name in ("simulate", "ballast", "mc1000"):
+            wall, cpu = timed(cmds[name], env)
+            print(f"  {name:9s} {wall:7.2f} s wall, {cpu:6.2f} s cpu")
+        wait_for_background_compiles(cache)
+        for name in cmds:                                  # warm-up round (caches as after the first run)
+            timed(cmds[name], env)
+        wait_for_background_compiles(cache)
+        walls = {name: [] for name in cmds}
+        for _ in range(runs):
+            for name, cmd in cmds.items():
+                walls[name].append(timed(cmd, env)[0])
+        print(f"\nwhole commands, fresh processes, {runs} rounds (median wall; ratios: median of per-round ratios):")
+        for name, w in walls.items():
+            print(f"  {name:9s} {statistics.median(w):7.3f} s  (min {min(w):.3f}, max {max(w):.3f})")
+
+        def ratio(a, b):
+            return statistics.median(x / y for x, y in zip(walls[a], walls[b]))
+        print(f"  simulate / import floor      {ratio('simulate', 'floor'):6.2f}x  (goal <= 3)")
+        print(f"  cold ballast / simulate      {ratio('ballast', 'simulate'):6.2f}x  (goal <= 1.3)")
+        print(f"  rank 10 motors / simulate    {ratio('rank10', 'simulate'):6.2f}x  (goal <= 2)")
+        print(f"  Monte Carlo 1000 / simulate  {ratio('mc1000', 'simulate'):6.2f}x  (goal <= 2)")
+
+
+def median_time(func, repeat: int) -> float:
+    func()
+    out = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        func()
+        out.append(time.perf_counter() - t0)
+    return statistics.median(out)
+
+
+def rocketpy_ballast(target_agl: float, tol_m: float = 0.5) -> tuple[float, int, float]:
+    """(ballast [kg], flights, seconds): Illinois regula falsi on RocketPy apogee(ballast)."""
+    from rocketpy_calisto import build, fly
+
+    def g(m):
+        env, rocket = build(dry_mass_offset=m)
+        f = fly(env, rocket)
+        return f.apogee - env.elevation - target_agl
+    t0 = time.perf_counter()
+    lo, hi = 0.0, 5.0
+    g_lo, g_hi, n, side = g(lo), g(hi), 2, 0
+    while g_lo * g_hi > 0 and hi < 40:
+        lo, g_lo, hi = hi, g_hi, 2 * hi
+        g_hi, n = g(hi), n + 1
+    m = lo
+    for _ in range(60):
+        m = hi - g_hi * (hi - lo) / (g_hi - g_lo)
+        gm = g(m)
+        n += 1
+        if abs(gm) <= tol_m:
+            break
+        if (gm > 0) == (g_lo > 0):
+            lo, g_lo = m, gm
+            if side == -1:
+                g_hi *= 0.5
+            side = -1
+        else:
+            hi, g_hi = m, gm
+            if side == 1:
+                g_lo *= 0.5
+            side = 1
+    return m, n, time.perf_counter() - t0
+
+
+def in_process(repeat: int) -> None:
+    with tempfile.TemporaryDirectory(prefix="ironbark-bench-") as tmp:
+        os.environ["IRONBARK_CACHE_DIR"] = tmp
+        from ironbark_opt.dynamics.model import FlightModel
+        from ironbark_opt.optimise.ballast import solve_ballast
+        from ironbark_opt.vehicle import load_setup
+        setup = load_setup(CALISTO)
+        p = setup.nominal_parameters()
+        model = FlightModel(setup, jit=True)
+        t_jit = median_time(lambda: model.run(p), repeat)
+        vm = FlightModel(setup, jit=False)
+        t_vm = median_time(lambda: vm.run(p), max(5, repeat // 5))
+        print("\nin-process, Calisto:")
+        print(f"  trajectory, VM                {1e3 * t_vm:8.2f} ms")
+        print(f"  trajectory, compiled          {1e3 * t_jit:8.2f} ms")
+        print(f"  operation-count limit         {1e3 * FLOPS_LIMIT_S:8.2f} ms  -> compiled / limit "
+              f"{t_jit / FLOPS_LIMIT_S:5.1f}x (goal <= 3)")
+        solve_ballast(setup, TARGET)
+        targets = iter(["3100m", "2900m", "3050m", "2950m", "3020m", "2980m", "3010m"] * 10)
+        t_ballast = median_time(lambda: solve_ballast(setup, next(targets)), 5)
+        sol = solve_ballast(setup, TARGET)
+        print(f"  warm ballast solve            {1e3 * t_ballast:8.1f} ms  ({sol.values['ballast_kg']:.3f} kg "
+              f"for {TARGET} AGL)")
+        try:
+            from rocketpy_calisto import build, fly
+        except ImportError:
+            print("  rocketpy: not installed (pip install -e .[bench]) - no peer ratios")
+            return
+        try:
+            env, rocket = build()
+        except ImportError:
+            print("  rocketpy: not installed (pip install -e .[bench]) - no peer ratios")
+            return
+        t_peer = median_time(lambda: fly(env, rocket), 3)
+        print(f"  RocketPy Flight to apogee     {1e3 * t_peer:8.1f} ms  -> RocketPy / compiled "
+              f"{t_peer / t_jit:6.0f}x (goal >= 300)")
+        m, n, t_root = rocketpy_ballast(3000.0)
+        print(f"  RocketPy bracketing ballast   {1e3 * t_root:8.1f} ms  ({n} flights, {m:.3f} kg to 0.5 m) -> "
+              f"root-finder / warm ballast {t_root / t_ballast:5.1f}x (goal >= 20)")
+
+
+def first_runs(baseline: Path, runs: int) -> None:
+    """First simulate of a new rocket (empty caches) here and at the baseline, in turn."""
+    walls = {"here": [], "baseline": []}
+    with tempfile.TemporaryDirectory(prefix="ironbark-bench-") as tmp:
+        for i in range(runs + 1):
+            for label, root in (("here", ROOT), ("baseline", baseline)):
+                env = environment(Path(tmp) / f"cache-{label}-{i}", Path(tmp) / f"pyc-{label}", root)
+                cmd = [sys.executable, "-m", "ironbark_opt.cli", "simulate", "examples/calisto/calisto.toml", "--json"]
+                wall = timed(cmd, env, cwd=root)[0]
+                if i:                                   # round 0 writes the bytecode caches
+                    walls[label].append(wall)
+                wait_for_background_compiles(Path(tmp) / f"cache-{label}-{i}")
+    print(f"\nfirst simulate of a new rocket (empty model/compile caches), {runs} rounds:")
+    for label, w in walls.items():
+        print(f"  {label:9s} {statistics.median(w):7.3f} s  (min {min(w):.3f}, max {max(w):.3f})")
+    r = statistics.median(a / b for a, b in zip(walls["here"], walls["baseline"]))
+    print(f"  here / baseline (VM path of the starting commit)  {r:5.2f}x  (goal <= 1)")
+
+
+def aero_build(baseline: Path) -> None:
+    with tempfile.TemporaryDirectory(prefix="ironbark-bench-") as tmp:
+        out = {}
+        for label, root in (("this checkout", ROOT), ("baseline", baseline)):
+            env = environment(Path(tmp) / f"cache-{label[:4]}", Path(tmp) / f"pyc-{label[:4]}", root)
+            cmd = [sys.executable, "-m", "ironbark_opt.cli", "aero", "build", KESTREL, "--out",
+                   str(Path(tmp) / f"table-{label[:4]}"), "--no-progress", "--json"]
+            out[label] = timed(cmd, env, cwd=root, timeout=3600)
+            print(f"  aero build Kestrel, {label:13s} {out[label][0]:7.1f} s wall, {out[label][1]:7.1f} s cpu")
+        print(f"  baseline / this checkout      {out['baseline'][0] / out['this checkout'][0]:5.2f}x wall, "
+              f"{out['baseline'][1] / out['this checkout'][1]:5.2f}x cpu (goal >= 3)")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=5, help="rounds of the whole-command comparison")
+    ap.add_argument("--repeat", type=int, default=50, help="repeats of in-process timings")
+    ap.add_argument("--baseline", type=Path, default=None, help="a checkout of the starting commit")
+    ap.add_argument("--aero", action="store_true", help="also time aero build of Kestrel (slow; needs --baseline)")
+    ap.add_argument("--skip-commands", action="store_true")
+    args = ap.parse_args()
+    if not args.skip_commands:
+        whole_commands(args.runs)
+    if args.baseline is not None:
+        first_runs(args.baseline, max(2, args.runs // 2))
+    in_process(args.repeat)
+    if args.aero and args.baseline is not None:
+        print("\naero build (one run each):")
+        aero_build(args.baseline)
+    if shutil.which("gcc") is None and shutil.which("cc") is None:
+        print("note: no C compiler found; 'compiled' figures are the VM")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,89 @@
+"""On-disk cache of built flight models (the symbolic Functions and their grid).
+
+Building a :class:`~ironbark_opt.dynamics.model.FlightModel` (right-hand sides,
+RK4 steps with common-subexpression elimination, the nominal flight that fixes
+the RK4 grid) costs ~0.35 s; loading its serialised CasADi Functions ~0.06 s.
+A model is stored under a key that changes whenever anything it depends on
+changes: the pickled setup (vehicle, motor, aero tables, atmosphere, site),
+the discretisation settings, the CasADi version and the source of every
+``ironbark_opt`` module.  The key also names the model's compiled libraries
+(:func:`~ironbark_opt.dynamics.integrator.compile_function`), so a cached
+compiled model is found without generating its C code again.
+
+Files: ``$IRONBARK_CACHE_DIR/models/<key>.pkl`` (written atomically; a file
+that cannot be read is ignored and rebuilt).  ``IRONBARK_MODEL_CACHE=0``
+switches the cache off.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+import pickletools
+from pathlib import Path
+
+import casadi as ca
+
+from ironbark_opt.dynamics.integrator import cache_root
+
+_FORMAT = 1
+_SOURCE_DIGEST: list[str] = []
+
+
+def source_digest() -> str:
+    """SHA-256 of every ``ironbark_opt`` source file (computed once per process)."""
+    if not _SOURCE_DIGEST:
+        root = Path(__file__).resolve().parents[1]
+        h = hashlib.sha256()
+        for path in sorted(root.rglob("*.py")):
+            h.update(str(path.relative_to(root)).encode())
+            h.update(path.read_bytes())
+        _SOURCE_DIGEST.append(h.hexdigest())
+    return _SOURCE_DIGEST[0]
+
+
+def model_key(setup, steps) -> str | None:
+    """The cache key of ``setup`` flown with ``steps``, or None (not cacheable)."""
+    if os.environ.get("IRONBARK_MODEL_CACHE", "1") == "0":
+        return None
+    try:
+        # optimize(): drop the pickle's memo bookkeeping, which depends on which
+        # objects happen to be shared in memory, not on the data
+        data = pickletools.optimize(pickle.dumps(setup, protocol=pickle.HIGHEST_PROTOCOL))
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return None
+    h = hashlib.sha256(data)
+    h.update(repr((_FORMAT, steps, ca.__version__, source_digest())).encode())
+    return h.hexdigest()[:24]
+
+
+def _path(key: str) -> Path:
+    return cache_root() / "models" / f"{key}.pkl"
+
+
+def load(key: str | None) -> dict | None:
+    """The stored model ``{name: Function or value}``, or None."""
+    if key is None:
+        return None
+    try:
+        with open(_path(key), "rb") as fh:
+            doc = pickle.load(fh)
+        return {k: ca.Function.deserialize(v) if isinstance(v, str) else v for k, v in doc.items()}
+    except Exception:          # noqa: BLE001 - missing, truncated or foreign file: rebuild
+        return None
+
+
+def store(key: str | None, items: dict) -> None:
+    """Write ``items`` (Functions serialised, other values pickled) atomically."""
+    if key is None:
+        return
+    path = _path(key)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        doc = {k: v.serialize() if isinstance(v, ca.Function) else v for k, v in items.items()}
+        tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        with open(tmp, "wb") as fh:
+            pickle.dump(doc, fh, protocol=pickle.HIGHEST_PROTOCOL)
+        os.replace(tmp, path)
+    except OSError:
+        pass                   # a read-only cache only costs the next build
