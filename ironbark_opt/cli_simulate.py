@@ -43,8 +43,9 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
     if config is not None:
         kwargs["config"] = config
     setup = load_setup(rocket, **kwargs)
-    from ironbark_opt.telemetry.calibration_file import apply_calibration
-    setup = apply_calibration(setup, calibration_path)
+    if calibration_path is not None:
+        from ironbark_opt.telemetry.calibration_file import apply_calibration
+        setup = apply_calibration(setup, calibration_path)
     if elevation_m is not None:
         setup = dataclasses.replace(setup, site_elevation=elevation_m)
     overrides = {}

@@ -32,7 +32,6 @@ from dataclasses import dataclass, field
 from typing import Mapping
 
 import numpy as np
-import pandas as pd
 
 from ironbark_opt.errors import InputError
 
@@ -131,13 +130,14 @@ class FlightLog:
         sigma = 1.4826 * float(np.median(np.abs(d2 - np.median(d2)))) / math.sqrt(6.0) if d2.size else 0.0
         return max(sigma, self.resolution.get(name, 0.0) / math.sqrt(12.0), 1e-6)
 
-    def to_dataframe(self) -> pd.DataFrame:
+    def to_dataframe(self):
         """Samples as a DataFrame with unit-suffixed columns (a copy)."""
         data = {"time_s": self.time, "altitude_agl_m": self.altitude_agl}
         if self.vertical_speed is not None:
             data["vertical_speed_mps"] = self.vertical_speed
         if self.acceleration is not None:
             data["acceleration_mps2"] = self.acceleration
+        import pandas as pd                # only here: simulate's start-up stays lean
         return pd.DataFrame(data)
 
     def to_dict(self) -> dict:
