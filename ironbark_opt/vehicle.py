@@ -120,6 +120,11 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
         "ballast_mass": ballast.mass,
         "ballast_x": ballast.x if ballast.x is not None else float(rocket.dry_mass_properties().cg_x),
     }
+    brakes = None
+    if getattr(rf, "airbrakes", None) is not None:
+        from ironbark_opt.rocket.airbrake_spec import airbrake_schedule
+        brakes = airbrake_schedule(rf.airbrakes)
+        nominal.update(brakes.nominal())
     chutes = tuple(Parachute(r.name, r.cd_area, None if r.deploy == "apogee" else float(r.deploy), r.lag)
                    for r in rf.recovery)
     return FlightSetup(motor=motor, nozzle_x=rf.motor.nozzle_x, dry=DryMass.from_properties(rocket.dry_mass_properties()),
@@ -128,7 +133,7 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                        nominal=nominal, parachutes=chutes, name=rocket.name,
                        ballast_mass_max=ballast.mass_max,
                        ballast_x_range=None if ballast.x_min is None else (ballast.x_min, ballast.x_max),
-                       source=str(rf.source))
+                       source=str(rf.source), airbrakes=brakes)
 
 
 def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> FlightSetup:

@@ -315,6 +315,7 @@ class FlightModel:
         p = np.asarray(p, dtype=float).ravel()
         if p.size != params.SIZE:
             raise InputError(f"parameter vector has {p.size} entries, expected {params.SIZE}")
+        _refuse_controller(self.setup)
         x0 = self._x0(p)
         t_r = self.rail_exit(p)
         t_b = float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
@@ -390,6 +391,7 @@ class FlightModel:
         P = np.asarray(P, dtype=float)
         if P.ndim != 2 or P.shape[0] != params.SIZE:
             raise InputError(f"parameter matrix must be {params.SIZE} x n, got {P.shape}")
+        _refuse_controller(self.setup)
         n = P.shape[1]
         idx = np.arange(n)
         x0, e = (np.array(v) for v in self._mapped("launch", n)(P))
@@ -578,14 +580,26 @@ class FlightModel:
                     t_landing=float(d["t_landing"][0]), x_landing=d["x_landing"][:, 0])
 
     def outputs(self, t, x, phase, p) -> np.ndarray:
-        """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples."""
+        """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples;
+        ``p`` one parameter vector or one column per sample."""
         y = np.zeros((len(rhs_mod.OUTPUT_NAMES), t.size))
+        p = np.asarray(p, dtype=float)
         for ph in np.unique(phase):
             idx = np.nonzero(phase == ph)[0]
             f = self.rhs[ph] if ph in self.rhs else self._stage_rhs[ph]
             fm = f.map(idx.size)
-            y[:, idx] = np.array(fm(x[:, idx], t[idx][None, :], np.repeat(p[:, None], idx.size, axis=1))[1])
+            P = p[:, idx] if p.ndim == 2 else np.repeat(p[:, None], idx.size, axis=1)
+            y[:, idx] = np.array(fm(x[:, idx], t[idx][None, :], P)[1])
         return y
+
+
+def _refuse_controller(setup):
+    """A Python air-brake controller flies only through dynamics.controlled."""
+    brakes = getattr(setup, "airbrakes", None)
+    if brakes is not None and not brakes.differentiable:
+        raise InputError("this rocket's air brakes follow a Python controller, which only 'simulate' flies; "
+                         "ballast, sensitivities and Monte Carlo need a schedule (trigger = time, altitude, "
+                         "mach or vertical_speed)", source=setup.source, field="airbrakes.trigger")
 
 
 def _final_state(model: FlightModel, p, T, t_rail_guess: float):
@@ -616,6 +630,7 @@ def apogee_functions(model: FlightModel, p_nominal) -> dict:
     valid for ``p`` in a neighbourhood of ``p_nominal`` (a dispersion or an
     optimisation, not an arbitrary different rocket).
     """
+    _refuse_controller(model.setup)
     run = model.run(p_nominal)
     t_rail0, t_apogee0 = run["t_rail"], run["t_apogee"]
     p = ca.MX.sym("p", params.SIZE)

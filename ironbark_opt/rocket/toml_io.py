@@ -28,7 +28,7 @@ from ironbark_opt.rocket.specs import (GRAIN_KEYS, MOTOR_OVERRIDE_KEYS, AeroSpec
 #: largest magnitude accepted for any number (guards overflow in the mass sums)
 MAX_MAGNITUDE = 1e9
 
-TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast")
+TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes")
 ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
 _BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass")
@@ -87,6 +87,7 @@ class RocketFile:
     ballast: BallastSpec
     source: Path
     wet_mass_override: MassProperties | None = None
+    airbrakes: object = None          # AirbrakeSpec or None (rocket/airbrake_spec.py)
 
     def dry_rocket(self, motor=None) -> Rocket:
         """The rocket with dry mass properties (numeric-only).
@@ -256,7 +257,15 @@ def loads_rocket_toml(text: str, path) -> RocketFile:
                       aero=_read_aero(rd, data.get("aero", {})),
                       launch=_read_launch(rd, data.get("launch", {})),
                       recovery=_read_recovery(rd, data.get("recovery", [])),
-                      ballast=ballast, source=path, wet_mass_override=wet)
+                      ballast=ballast, source=path, wet_mass_override=wet,
+                      airbrakes=_read_airbrakes(rd, data))
+
+
+def _read_airbrakes(rd: _Reader, data):
+    if "airbrakes" not in data:
+        return None
+    from ironbark_opt.rocket.airbrake_spec import read_airbrakes
+    return read_airbrakes(rd, data["airbrakes"])
 
 
 def _read_rocket(rd: _Reader, data):
