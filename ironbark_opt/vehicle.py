@@ -22,7 +22,15 @@ RAIL_EXIT_RULES = ("forward_button", "aft_button", "travel")
 
 
 def load_motor_for(spec):
-    """The motor a :class:`MotorSpec` names, with its overrides applied."""
+    """The motor a :class:`MotorSpec` names, with its overrides applied (with
+    air-start motors: a :class:`~ironbark_opt.motors.composite.CompositeMotor`)."""
+    if spec.airstart:
+        from ironbark_opt.motors.composite import CompositeMotor
+        first = dataclasses.replace(spec, airstart=())
+        parts = [(load_motor_for(first), 0.0, spec.nozzle_x)] + \
+            [(load_motor_for(s), float(t), s.nozzle_x) for s, t in spec.airstart]
+        return CompositeMotor(tuple(m for m, _, _ in parts), tuple(t for _, t, _ in parts),
+                              tuple(x for _, _, x in parts), spec.nozzle_x)
     from ironbark_opt.motors import load_motor
     from ironbark_opt.motors.grains import Grains
 
