@@ -29,7 +29,8 @@ def flight_model(setup, steps: Steps | None = None, jit: bool = False) -> Flight
         ref, model = hit
         if ref() is setup and model.steps == (steps or Steps()) and model.jit == jit:
             return model
-    model = FlightModel(setup, steps, jit=jit)
+    from ironbark_opt.dynamics.staged import StagedFlightModel, StagedSetup
+    model = (StagedFlightModel if isinstance(setup, StagedSetup) else FlightModel)(setup, steps, jit=jit)
     _MODELS[key] = (weakref.ref(setup), model)
     return model
 
@@ -141,7 +142,7 @@ def _summary(model: FlightModel, run: dict, df: pd.DataFrame) -> dict:
     rail = df.index[df["time_s"] <= run["t_rail"] + 1e-12][-1]
     i_vmax = int(df["speed_mps"].values.argmax())
     burn = df.index[df["time_s"] <= run["t_burnout"] + 1e-12][-1]
-    flying = df["phase"].isin(["rail", "boost", "coast"]).values
+    flying = df["phase"].isin(["rail", "boost", "coast", "stack_coast", "sustainer_boost"]).values
     s = {
         "apogee_agl_m": float(x_a[2]),
         "apogee_asl_m": float(x_a[2] + elev),

@@ -159,6 +159,15 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     kwargs
         As in :func:`setup_from_file`.
     """
+    if Path(path).suffix.lower() == ".ork":
+        from ironbark_opt.openrocket import read_ork
+        doc = read_ork(_existing(path))
+        if len(doc.rocket.stages) > 1:
+            from ironbark_opt.openrocket.staging import staged_setup
+            if table is not None:
+                raise InputError("--table applies to single-stage rockets (each stage of a staged rocket "
+                                 "flies its own aerodynamics)", source=path, field="table")
+            return staged_setup(doc, config, **kwargs)
     rf = load_rocket_file(path, config=config)
     if table is not None:
         table = Path(table)

@@ -54,7 +54,7 @@ class CompositeMotor(Motor):
         if not (len(self.motors) == len(self.ignition_times) == len(self.nozzle_x)) or not self.motors:
             raise InputError("a composite motor needs one ignition time and nozzle position per motor",
                              field="motors")
-        if min(self.ignition_times) != 0.0:
+        if min(self.ignition_times) != 0.0:  # noqa: SIM102
             raise InputError("one motor must ignite at launch (ignition time 0)", field="ignition_times")
         if any(t < 0 for t in self.ignition_times):
             raise InputError("ignition times must be >= 0 s", field="ignition_times")
@@ -125,3 +125,72 @@ class CompositeMotor(Motor):
         i_a = sum(p[4] for p in parts)
         # Motor.mass() = dry_mass + propellant: the propellant share is the rest.
         return mass - self.dry_mass, self.reference_nozzle_x - x_cg, (i_t, i_a)
+
+
+@dataclass(frozen=True)
+class DelayedMotor(Motor):
+    """``motor`` ignited ``delay`` [s] (unscaled) after launch: an upper stage lit at
+    the lower stage's burnout.  The burn-time scale stretches the delay too (it
+    is the lower stage's burn time).  Symbolic-safe.
+
+    Parameters
+    ----------
+    motor : Motor
+    delay : float [s]
+    """
+
+    motor: Motor
+    delay: float
+
+    designation = property(lambda self: self.motor.designation)
+    manufacturer = property(lambda self: self.motor.manufacturer)
+    total_impulse = property(lambda self: self.motor.total_impulse)
+    dry_mass = property(lambda self: self.motor.dry_mass)
+    propellant_mass_initial = property(lambda self: self.motor.propellant_mass_initial)
+    diameter = property(lambda self: self.motor.diameter)
+    length = property(lambda self: self.motor.length)
+    nozzle_exit_area = property(lambda self: self.motor.nozzle_exit_area)
+    reference_pressure = property(lambda self: self.motor.reference_pressure)
+
+    @property
+    def burn_time(self) -> float:
+        """Launch to burnout [s] (unscaled)."""
+        return self.delay + self.motor.burn_time
+
+    def _thrust_unscaled(self, tau):
+        return self.motor._thrust_unscaled(tau - self.delay)
+
+    def _impulse_unscaled(self, tau):
+        return self.motor._impulse_unscaled(tau - self.delay)
+
+    def _mass_properties_unscaled(self, tau):
+        return self.motor._mass_properties_unscaled(tau - self.delay)
+
+
+@dataclass(frozen=True)
+class UnlitMotor(Motor):
+    """``motor`` carried unlit (an upper stage's motor while the booster burns):
+    no thrust, its full mass, CG and inertia at ignition.  Symbolic-safe."""
+
+    motor: Motor
+
+    designation = property(lambda self: f"{self.motor.designation} (unlit)")
+    manufacturer = property(lambda self: self.motor.manufacturer)
+    dry_mass = property(lambda self: self.motor.dry_mass)
+    propellant_mass_initial = property(lambda self: self.motor.propellant_mass_initial)
+    diameter = property(lambda self: self.motor.diameter)
+    length = property(lambda self: self.motor.length)
+    nozzle_exit_area = None
+    reference_pressure = 101325.0
+    burn_time = 0.0
+    total_impulse = 0.0
+
+    def _thrust_unscaled(self, tau):
+        return 0.0 * tau
+
+    def _impulse_unscaled(self, tau):
+        return 0.0 * tau
+
+    def _mass_properties_unscaled(self, tau):
+        mp, cg, inertia = self.motor._mass_properties_unscaled(0.0)
+        return mp + 0.0 * tau, cg + 0.0 * tau, (inertia[0] + 0.0 * tau, inertia[1] + 0.0 * tau)

@@ -1,0 +1,206 @@
+"""Serial two-stage flight: the stack to separation, then the sustainer alone.
+
+The event sequence is fixed per configuration (OpenRocket's "ignite the
+upper stage at the booster's burnout + delay" and "separate at the upper
+stage's ignition / booster burnout + delay"), so every phase is one RK4
+``mapaccum`` of one right-hand side and no switch falls inside a step:
+
+1. ``rail``, ``boost``: the whole stack (its dry mass, aero and the
+   sustainer's motor carried unlit) through the phases of
+   :class:`~ironbark_opt.dynamics.model.FlightModel`, to the booster's burnout
+   ``t_b1``;
+2. ``stack_coast`` (only when the separation comes after burnout, delay > 0):
+   the stack coasting to ``t_s = t_b1 + delay``;
+3. separation at ``t_s``: the state passes to the sustainer, whose CG lies
+   ``d = x_cg,stack - x_cg,sustainer`` ahead of the stack's on the body axis:
+   ``r_s = r + T_LB d e_x``, ``v_s = v + w x d e_x`` (rigid body), same
+   attitude and rates;
+4. ``sustainer_boost``: the sustainer (its own dry mass, aero and motor, lit
+   at ``t_s``) to its burnout, then ``sustainer_coast`` to apogee (the root of
+   ``v_z``, refined inside its step as in ``FlightModel.run``).
+
+The sustainer's apogee is the answer.  Numeric-only for now: ballast,
+sensitivities and Monte Carlo of staged rockets are not built yet (they
+raise InputError).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ironbark_opt import params
+from ironbark_opt.dynamics import rhs as rhs_mod
+from ironbark_opt.dynamics.frames import rotation_matrix
+from ironbark_opt.dynamics.integrator import phase_trajectory, rk4_step
+from ironbark_opt.dynamics.model import G0, FlightModel, Steps
+from ironbark_opt.errors import InputError, SolverError
+
+
+@dataclass(frozen=True)
+class StagedSetup:
+    """A serial two-stage rocket (plain container; never simulates).
+
+    Parameters
+    ----------
+    stack : FlightSetup
+        Both stages together, booster motor lit, the sustainer's motor unlit.
+    sustainer : FlightSetup
+        The upper stage alone; its motor a
+        :class:`~ironbark_opt.motors.composite.DelayedMotor` lit at separation.
+    separation_delay : float [s]
+        Separation (and sustainer ignition) after the booster's burnout.
+    booster_name, sustainer_name : str
+    """
+
+    stack: object
+    sustainer: object
+    separation_delay: float = 0.0
+    booster_name: str = "booster"
+    sustainer_name: str = "sustainer"
+
+    # What simulate() and the summary read from a setup:
+    name = property(lambda self: self.sustainer.name)
+    site_elevation = property(lambda self: self.stack.site_elevation)
+    aero = property(lambda self: self.sustainer.aero)
+    motor = property(lambda self: self.sustainer.motor)
+    source = property(lambda self: self.stack.source)
+    airbrakes = None
+
+    def nominal_parameters(self, **overrides) -> np.ndarray:
+        return self.stack.nominal_parameters(**overrides)
+
+    def __getattr__(self, name):
+        if name.startswith("__"):
+            raise AttributeError(name)
+        raise InputError(f"staged rockets fly with 'simulate' only so far ({name} is not available); "
+                         "ballast, sensitivities and Monte Carlo of staged rockets are not built yet",
+                         field="stages")
+
+
+class StagedFlightModel:
+    """Compiled-once functions of a :class:`StagedSetup` (numeric runs)."""
+
+    def __init__(self, setup: StagedSetup, steps: Steps | None = None, *, jit: bool = False):
+        self.setup = setup
+        self.steps = steps or Steps()
+        self.jit = jit
+        self.stack = FlightModel(setup.stack, self.steps, jit=jit)
+        sus = setup.sustainer
+        self.rhs = {"rail": self.stack.rhs["rail"], "boost": self.stack.rhs["boost"],
+                    "stack_coast": self.stack.rhs["coast"],
+                    "sustainer_boost": rhs_mod.build(sus, "boost"), "coast": rhs_mod.build(sus, "coast")}
+        self._step = {k: rk4_step(self.rhs[k], f"step_{k}") for k in ("sustainer_boost", "coast", "stack_coast")}
+        b2 = float(sus.motor.motor.burn_time)
+        self.n_sboost = max(20, int(math.ceil(b2 / self.steps.dt_boost)))
+        self.n_scoast = max(self.steps.n_coast, 400)
+        self.n_stack_coast = max(4, int(math.ceil(setup.separation_delay / self.steps.dt_boost)))
+        self._traj = {"sustainer_boost": phase_trajectory(self._step["sustainer_boost"], self.n_sboost, "traj_sb"),
+                      "coast": phase_trajectory(self._step["coast"], self.n_scoast, "traj_sc"),
+                      "stack_coast": phase_trajectory(self._step["stack_coast"], self.n_stack_coast, "traj_stc")}
+
+    def __getattr__(self, name):
+        if name.startswith("__"):
+            raise AttributeError(name)
+        # Anything of FlightModel not built for staged rockets (ballast, AD, batches).
+        raise InputError(f"staged rockets fly with 'simulate' only so far ({name} is not available); "
+                         "ballast, sensitivities and Monte Carlo of staged rockets are not built yet",
+                         field="stages")
+
+    def run_batch(self, P, *, descent: bool = False):
+        return self.__getattr__("run_batch")
+
+    def _separate(self, x, t, p):
+        """Stack state -> sustainer state at separation (rigid-body CG shift)."""
+        y_stack = np.array(self.rhs["stack_coast"](x, t, p)[1]).ravel()
+        y_sus = np.array(self.rhs["coast"](x, t, p)[1]).ravel()
+        i_cg = rhs_mod.OUTPUT_NAMES.index("cg_x_m")
+        d = y_stack[i_cg] - y_sus[i_cg]               # [m] sustainer CG ahead of the stack's (body +x)
+        t_lb = np.array(rotation_matrix(x[6:10]))
+        out = x.copy()
+        out[0:3] = x[0:3] + t_lb @ np.array([d, 0.0, 0.0])
+        out[3:6] = x[3:6] + np.cross(x[10:13], np.array([d, 0.0, 0.0]))
+        return out, d
+
+    def run(self, p, *, descent: bool = False) -> dict:
+        """Fly to the sustainer's apogee (see the module docstring).
+
+        Returns
+        -------
+        dict as :meth:`FlightModel.run` (``t_burnout``: the sustainer's burnout)
+        plus ``t_separation`` [s], ``x_separation`` (13,), ``t_booster_burnout`` [s].
+        """
+        if descent:
+            raise InputError("descent of staged rockets is not built yet", field="stages")
+        st = self.stack
+        p = np.asarray(p, dtype=float).ravel()
+        s = p[params.index("burn_time_scale")]
+        x0 = st._x0(p)
+        t_r = st.rail_exit(p)
+        t_b1 = float(self.setup.stack.motor.burn_time) * s
+        X_rail = np.array(st._run["rail"](x0, 0.0, t_r, p))
+        X_boost = np.array(st._run["boost"](X_rail[:, -1], t_r, t_b1, p))
+        parts_t = [np.array([0.0]), np.linspace(0, t_r, X_rail.shape[1] + 1)[1:],
+                   t_r + (t_b1 - t_r) * np.arange(1, X_boost.shape[1] + 1) / X_boost.shape[1]]
+        parts_x = [x0[:, None], X_rail, X_boost]
+        phases = ["rail"] * (X_rail.shape[1] + 1) + ["boost"] * X_boost.shape[1]
+        x, t_s = X_boost[:, -1], t_b1
+        if self.setup.separation_delay > 0:
+            t_s = t_b1 + self.setup.separation_delay * s
+            X = np.array(self._traj["stack_coast"](x, t_b1, t_s, p))
+            parts_t.append(t_b1 + (t_s - t_b1) * np.arange(1, X.shape[1] + 1) / X.shape[1])
+            parts_x.append(X)
+            phases += ["stack_coast"] * X.shape[1]
+            x = X[:, -1]
+        x_sep, _ = self._separate(x, t_s, p)
+        t_b2 = float(self.setup.sustainer.motor.burn_time) * s
+        X_sb = np.array(self._traj["sustainer_boost"](x_sep, t_s, t_b2, p))
+        parts_t.append(t_s + (t_b2 - t_s) * np.arange(1, X_sb.shape[1] + 1) / X_sb.shape[1])
+        parts_x.append(X_sb)
+        phases += ["sustainer_boost"] * X_sb.shape[1]
+        x_b = X_sb[:, -1]
+        vz_b = float(st.vz_l(x_b))
+        if vz_b <= 0:
+            raise SolverError("the sustainer's vertical velocity at burnout is not positive")
+        t_end = t_b2 + vz_b / G0 + 2.0
+        for _ in range(3):
+            X_c = np.array(self._traj["coast"](x_b, t_b2, t_end, p))
+            vz = np.array(st.vz_l.map(X_c.shape[1])(X_c)).ravel()
+            below = np.nonzero(vz <= 0)[0]
+            if below.size:
+                break
+            t_end = t_b2 + 1.5 * (t_end - t_b2)
+        else:
+            raise SolverError("the sustainer's apogee is not reached within the coast horizon")
+        k = int(below[0])
+        dt = (t_end - t_b2) / self.n_scoast
+        x_k = x_b if k == 0 else X_c[:, k - 1]
+        vz_k = vz_b if k == 0 else vz[k - 1]
+        t_k = t_b2 + k * dt
+        h = dt * vz_k / (vz_k - vz[k]) if vz_k != vz[k] else dt
+        step = self._step["coast"]
+        for _ in range(8):                    # secant on the step length (as FlightModel.refine_in_step)
+            a = float(st.vz_l(step(x_k, t_k, h, p)))
+            b = float(st.vz_l(step(x_k, t_k, h * (1 + 1e-6) + 1e-9, p)))
+            der = (b - a) / (h * 1e-6 + 1e-9)
+            if der == 0 or abs(a) < 1e-10:
+                break
+            h = float(np.clip(h - a / der, 0.0, dt))
+        x_a = np.array(step(x_k, t_k, h, p)).ravel()
+        t_a = t_k + h
+        parts_t += [t_b2 + dt * np.arange(1, k + 1), np.array([t_a])]
+        parts_x += [X_c[:, :k], x_a[:, None]]
+        phases += ["coast"] * (k + 1)
+        return dict(t=np.concatenate(parts_t), x=np.hstack(parts_x), phase=np.array(phases), p=p,
+                    t_rail=t_r, t_burnout=t_b2, t_apogee=t_a, x_rail=X_rail[:, -1].copy(), x_burnout=x_b,
+                    x_apogee=x_a, t_separation=t_s, x_separation=x_sep, t_booster_burnout=t_b1)
+
+    def outputs(self, t, x, phase, p) -> np.ndarray:
+        """Derived quantities (rows of ``rhs.OUTPUT_NAMES``), each phase by its own vehicle."""
+        y = np.zeros((len(rhs_mod.OUTPUT_NAMES), t.size))
+        for ph in np.unique(phase):
+            idx = np.nonzero(phase == ph)[0]
+            fm = self.rhs[ph].map(idx.size)
+            y[:, idx] = np.array(fm(x[:, idx], t[idx][None, :], np.repeat(p[:, None], idx.size, axis=1))[1])
+        return y
