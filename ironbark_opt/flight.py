@@ -98,6 +98,13 @@ class Flight:
             f"{s['static_margin_initial_cal']:.2f} cal",
             f"  apogee drift       {s['apogee_east_m']:10.1f} m east, {s['apogee_north_m']:.1f} m north",
         ]
+        if "separation_time_s" in s:
+            lines.append(f"  separation         {s['separation_time_s']:10.2f} s at {s['separation_altitude_agl_m']:.1f} m "
+                         f"AGL (booster burnout {s['booster_burnout_time_s']:.2f} s)")
+        if "booster_landing_time_s" in s:
+            lines.append(f"  booster            apogee {s['booster_apogee_agl_m']:.1f} m AGL at "
+                         f"{s['booster_apogee_time_s']:.2f} s, lands at {s['booster_landing_time_s']:.1f} s, "
+                         f"{s['booster_landing_east_m']:.1f} m east, {s['booster_landing_north_m']:.1f} m north")
         if "airbrake_max_deployment" in s:
             lines.append(f"  air brakes         {s['airbrake_max_deployment']:10.3f} max deployment, opening from "
                          f"{s['airbrake_open_time_s']:.2f} s at up to {s['airbrake_max_rate_per_s']:.2f} /s")
@@ -163,6 +170,10 @@ def _summary(model: FlightModel, run: dict, df: pd.DataFrame) -> dict:
         "launch_mass_kg": float(df["mass_kg"].iloc[0]),
         "site_elevation_m": float(elev),
     }
+    if "t_separation" in run:                    # a staged rocket (dynamics/staged.py)
+        s.update(booster_burnout_time_s=float(run["t_booster_burnout"]),
+                 separation_time_s=float(run["t_separation"]),
+                 separation_altitude_agl_m=float(run["x_separation"][2]), **run.get("booster", {}))
     brakes = getattr(model.setup, "airbrakes", None)
     if brakes is not None:
         up = df[flying]

@@ -52,6 +52,11 @@ class StagedSetup:
     separation_delay : float [s]
         Separation (and sustainer ignition) after the booster's burnout.
     booster_name, sustainer_name : str
+    booster : FlightSetup or None
+        The booster alone after separation (spent motor aboard), positions
+        from its own front end; flown to its landing point when given.
+    booster_x : float [m]
+        The booster's front end aft of the stack's nose tip.
     """
 
     stack: object
@@ -59,6 +64,8 @@ class StagedSetup:
     separation_delay: float = 0.0
     booster_name: str = "booster"
     sustainer_name: str = "sustainer"
+    booster: object = None
+    booster_x: float = 0.0
 
     # What simulate() and the summary read from a setup:
     name = property(lambda self: self.sustainer.name)
@@ -111,6 +118,78 @@ class StagedFlightModel:
     def run_batch(self, P, *, descent: bool = False):
         return self.__getattr__("run_batch")
 
+    # ------------------------------------------------------------------ booster
+    def _booster_functions(self):
+        cache = self.__dict__.setdefault("_booster_cache", {})
+        if not cache:
+            b = self.setup.booster
+            cache["coast_rhs"] = rhs_mod.build(b, "coast")
+            cache["coast"] = phase_trajectory(rk4_step(cache["coast_rhs"], "step_bc"), 100, "traj_bc")
+            for i, (_, cd_area) in enumerate(self._booster_stages()):
+                if cd_area > 0:
+                    cache[i] = phase_trajectory(rk4_step(rhs_mod.build(b, "descent", cd_area=cd_area), "step_bd"),
+                                                100, f"traj_bd{i}")
+        return cache
+
+    def _booster_stages(self):
+        """[(altitude AGL where the stage starts [m] or None at apogee, Cd*S [m^2])]."""
+        chutes = self.setup.booster.parachutes
+        cd = sum(c.cd_area for c in chutes if c.deploy_altitude is None)
+        out = [(None, cd)]
+        for alt in sorted({c.deploy_altitude for c in chutes if c.deploy_altitude is not None}, reverse=True):
+            cd += sum(c.cd_area for c in chutes if c.deploy_altitude == alt)
+            out.append((alt, cd))
+        return out
+
+    def fly_booster(self, x_stack, t_s, p) -> dict:
+        """The booster from separation to the ground (numeric): 6-DOF coast to its
+        apogee (0.01 s steps), then point mass under its chutes (0.05 s steps;
+        ballistic 6-DOF if it has none); events at the first sample past them,
+        landing interpolated linearly between samples.
+
+        Returns dict ``booster_apogee_agl_m``, ``booster_apogee_time_s``,
+        ``booster_landing_time_s``, ``booster_landing_east_m``, ``booster_landing_north_m``.
+        """
+        fn = self._booster_functions()
+        i_cg = rhs_mod.OUTPUT_NAMES.index("cg_x_m")
+        cg_stack = float(np.array(self.rhs["stack_coast"](x_stack, t_s, p)[1]).ravel()[i_cg])
+        cg_b = float(np.array(fn["coast_rhs"](x_stack, t_s, p)[1]).ravel()[i_cg]) + self.setup.booster_x
+        e = np.array([-(cg_b - cg_stack), 0.0, 0.0])          # booster CG from the stack's, body axes
+        x = x_stack.copy()
+        x[0:3] = x_stack[0:3] + np.array(rotation_matrix(x_stack[6:10])) @ e
+        x[3:6] = x_stack[3:6] + np.cross(x_stack[10:13], e)
+        t, out = t_s, {}
+        stages = self._booster_stages()
+        for k in range(len(stages) + 1):
+            if k == 0:
+                traj, dt, done = fn["coast"], 0.01, (lambda X: np.array(self.stack.vz_l.map(X.shape[1])(X)).ravel() <= 0)
+            else:
+                alt_end = stages[k][0] if k < len(stages) else 0.0
+                if stages[k - 1][1] <= 0:                     # no chute: ballistic to the ground
+                    traj, dt = fn["coast"], 0.02
+                else:
+                    traj, dt = fn[k - 1], 0.05
+                done = (lambda X, a=alt_end: X[2] <= a)
+            for _ in range(3000):
+                X = np.array(traj(x, t, t + 100 * dt, p))
+                hit = np.nonzero(done(X))[0]
+                if hit.size:
+                    j = int(hit[0])
+                    prev = x if j == 0 else X[:, j - 1]
+                    if k == len(stages):                      # landing: interpolate z = 0
+                        f = prev[2] / (prev[2] - X[2, j]) if prev[2] != X[2, j] else 1.0
+                        xl = prev + f * (X[:, j] - prev)
+                        out.update(booster_landing_time_s=float(t + (j + f) * dt), booster_landing_east_m=float(xl[0]),
+                                   booster_landing_north_m=float(xl[1]))
+                    x, t = X[:, j], t + (j + 1) * dt
+                    if k == 0:
+                        out.update(booster_apogee_agl_m=float(max(prev[2], x[2])), booster_apogee_time_s=float(t))
+                    break
+                x, t = X[:, -1], t + 100 * dt
+            else:
+                raise SolverError("the booster did not reach the ground within the time limit")
+        return out
+
     def _separate(self, x, t, p):
         """Stack state -> sustainer state at separation (rigid-body CG shift)."""
         y_stack = np.array(self.rhs["stack_coast"](x, t, p)[1]).ravel()
@@ -129,7 +208,8 @@ class StagedFlightModel:
         Returns
         -------
         dict as :meth:`FlightModel.run` (``t_burnout``: the sustainer's burnout)
-        plus ``t_separation`` [s], ``x_separation`` (13,), ``t_booster_burnout`` [s].
+        plus ``t_separation`` [s], ``x_separation`` (13,), ``t_booster_burnout`` [s]
+        and ``booster`` (:meth:`fly_booster`, when the setup has the booster).
         """
         if descent:
             raise InputError("descent of staged rockets is not built yet", field="stages")
@@ -194,7 +274,8 @@ class StagedFlightModel:
         phases += ["coast"] * (k + 1)
         return dict(t=np.concatenate(parts_t), x=np.hstack(parts_x), phase=np.array(phases), p=p,
                     t_rail=t_r, t_burnout=t_b2, t_apogee=t_a, x_rail=X_rail[:, -1].copy(), x_burnout=x_b,
-                    x_apogee=x_a, t_separation=t_s, x_separation=x_sep, t_booster_burnout=t_b1)
+                    x_apogee=x_a, t_separation=t_s, x_separation=x_sep, t_booster_burnout=t_b1,
+                    booster=self.fly_booster(x, t_s, p) if self.setup.booster is not None else {})
 
     def outputs(self, t, x, phase, p) -> np.ndarray:
         """Derived quantities (rows of ``rhs.OUTPUT_NAMES``), each phase by its own vehicle."""

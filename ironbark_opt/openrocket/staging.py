@@ -76,6 +76,30 @@ def _stage_doc(doc: OrkDocument, stages) -> OrkDocument:
     return dataclasses.replace(doc, rocket=rocket)
 
 
+def _shifted(comp, dx: float):
+    """``comp`` and its subtree moved ``dx`` [m] forward (positions are absolute)."""
+    return dataclasses.replace(comp, x=comp.x - dx, children=[_shifted(c, dx) for c in comp.children])
+
+
+def booster_setup(doc: OrkDocument, cfg, spec_b, launch, **setup_kwargs):
+    """The booster alone after separation (its spent motor aboard), in its own
+    frame: x from the booster's front end, ``x0`` [m aft of the stack's nose tip]
+    returned with it."""
+    from ironbark_opt.rocket.toml_io import RocketFile
+    from ironbark_opt.vehicle import setup_from_file
+
+    stage = doc.rocket.stages[1]
+    x0 = stage.x
+    sub = dataclasses.replace(doc, rocket=dataclasses.replace(doc.rocket, stages=[_shifted(stage, x0)]))
+    rocket = geometry(sub)
+    aero = AeroSpec(table=_aero_table_path(rocket, dataclasses.replace(
+        sub, path=doc.path.with_name(f"{doc.path.stem}-booster{doc.path.suffix}"))))
+    spec = dataclasses.replace(spec_b, nozzle_x=spec_b.nozzle_x - x0)
+    rf = RocketFile(rocket, spec, aero, launch, recovery(sub, cfg.config_id), BallastSpec(), doc.path)
+    setup = setup_from_file(rf, **setup_kwargs)
+    return dataclasses.replace(setup, name=f"{doc.name} ({stage.name})"), x0
+
+
 def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
     """The :class:`StagedSetup` of a two-stage .ork configuration (numeric-only)."""
     from ironbark_opt.dynamics.staged import StagedSetup
@@ -104,4 +128,6 @@ def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
     sus_motor = DelayedMotor(sustainer_motor, booster_motor.burn_time + delay)
     stack = dataclasses.replace(setups["stack"], motor=stack_motor, name=f"{doc.name} (stack)")
     sustainer = dataclasses.replace(setups["sustainer"], motor=sus_motor, name=doc.name)
-    return StagedSetup(stack, sustainer, delay, doc.rocket.stages[1].name, doc.rocket.stages[0].name)
+    booster, x0 = booster_setup(doc, cfg, spec_b, launch, **setup_kwargs)
+    return StagedSetup(stack, sustainer, delay, doc.rocket.stages[1].name, doc.rocket.stages[0].name,
+                       booster=booster, booster_x=x0)
