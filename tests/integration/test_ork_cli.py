@@ -106,3 +106,19 @@ def test_ork_flies_its_panel_table(env):
     assert panel["apogee_agl_m"] == pytest.approx(base["apogee_agl_m"], rel=0.03)
     res = CliRunner().invoke(main, ["simulate", str(rocket), "--table", str(env / "nope.csv")])
     assert res.exit_code == 2 and "aerodynamic table not found" in res.output
+
+
+def test_info_shows_every_stage(env):
+    """Both stages of the two-stage design, each with its dry mass, motor, ignition and
+    separation settings; the stages' dry masses add up to the rocket's."""
+    res = CliRunner().invoke(main, ["ork", "info", str(DATA / "Two stage high power rocket.ork"), "--json",
+                                    "--config", "fadeeef3"])
+    assert res.exit_code == 0, res.output
+    info = json.loads(res.output)
+    stages = info["stage_list"]
+    assert [s["name"] for s in stages] == ["Sustainer", "Booster"]
+    assert sum(s["dry_mass_kg"] for s in stages) == pytest.approx(info["dry_mass_kg"], rel=1e-12)
+    assert stages[0]["motors"][0]["designation"] == "I59WN" and stages[0]["motors"][0]["ignition"] == "burnout"
+    assert stages[1]["motors"][0]["designation"] == "I357T" and stages[1]["separation"] == "upperignition"
+    human = CliRunner().invoke(main, ["ork", "info", str(DATA / "Two stage high power rocket.ork")]).output
+    assert "stages (2):" in human and "separates on burnout + 0 s" in human
