@@ -604,6 +604,8 @@ def _refuse_controller(setup):
 
 def _final_state(model: FlightModel, p, T, t_rail_guess: float):
     """Symbolic (MX) state at time ``T`` in the coast, through all phases."""
+    if hasattr(type(model), "final_state_symbolic"):    # staged rockets (dynamics/staged.py)
+        return model.final_state_symbolic(p, T, t_rail_guess)
     P = params.unpack(p)
     t_r = model.rail_exit_root(t_rail_guess, p)
     x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]

@@ -19,15 +19,17 @@ stage's ignition / booster burnout + delay"), so every phase is one RK4
    at ``t_s``) to its burnout, then ``sustainer_coast`` to apogee (the root of
    ``v_z``, refined inside its step as in ``FlightModel.run``).
 
-The sustainer's apogee is the answer.  Numeric-only for now: ballast,
-sensitivities and Monte Carlo of staged rockets are not built yet (they
-raise InputError).
+The sustainer's apogee is the answer.  :meth:`StagedFlightModel.final_state_symbolic`
+is the same sequence as one CasADi (MX) graph with the final time an
+input, so ballast and sensitivities differentiate it like a single-stage
+flight; Monte Carlo loops over samples (:meth:`StagedFlightModel.run_batch`).
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
+import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
@@ -73,6 +75,9 @@ class StagedSetup:
     aero = property(lambda self: self.sustainer.aero)
     motor = property(lambda self: self.sustainer.motor)
     source = property(lambda self: self.stack.source)
+    dry = property(lambda self: self.sustainer.dry)               # the ballast sits in the sustainer
+    ballast_mass_max = property(lambda self: self.sustainer.ballast_mass_max)
+    ballast_x_range = property(lambda self: self.sustainer.ballast_x_range)
     airbrakes = None
 
     def nominal_parameters(self, **overrides) -> np.ndarray:
@@ -81,8 +86,8 @@ class StagedSetup:
     def __getattr__(self, name):
         if name.startswith("__"):
             raise AttributeError(name)
-        raise InputError(f"staged rockets fly with 'simulate' only so far ({name} is not available); "
-                         "ballast, sensitivities and Monte Carlo of staged rockets are not built yet",
+        raise InputError(f"'{name}' is not available for staged rockets yet (they fly simulate, ballast, "
+                         "sensitivity and montecarlo to the sustainer's apogee; no descent, JIT or cluster)",
                          field="stages")
 
 
@@ -103,6 +108,13 @@ class StagedFlightModel:
         self.n_sboost = max(20, int(math.ceil(b2 / self.steps.dt_boost)))
         self.n_scoast = max(self.steps.n_coast, 400)
         self.n_stack_coast = max(4, int(math.ceil(setup.separation_delay / self.steps.dt_boost)))
+        self.vz_l = self.stack.vz_l
+        xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", params.SIZE)
+        i_cg = rhs_mod.OUTPUT_NAMES.index("cg_x_m")
+        d = self.rhs["stack_coast"](xs, ts, ps)[1][i_cg] - self.rhs["coast"](xs, ts, ps)[1][i_cg]
+        e = ca.vertcat(d, 0, 0)
+        self.separate = ca.Function("separate", [xs, ts, ps], [ca.vertcat(
+            xs[0:3] + rotation_matrix(xs[6:10]) @ e, xs[3:6] + ca.cross(xs[10:13], e), xs[6:13])])
         self._traj = {"sustainer_boost": phase_trajectory(self._step["sustainer_boost"], self.n_sboost, "traj_sb"),
                       "coast": phase_trajectory(self._step["coast"], self.n_scoast, "traj_sc"),
                       "stack_coast": phase_trajectory(self._step["stack_coast"], self.n_stack_coast, "traj_stc")}
@@ -111,12 +123,9 @@ class StagedFlightModel:
         if name.startswith("__"):
             raise AttributeError(name)
         # Anything of FlightModel not built for staged rockets (ballast, AD, batches).
-        raise InputError(f"staged rockets fly with 'simulate' only so far ({name} is not available); "
-                         "ballast, sensitivities and Monte Carlo of staged rockets are not built yet",
+        raise InputError(f"'{name}' is not available for staged rockets yet (they fly simulate, ballast, "
+                         "sensitivity and montecarlo to the sustainer's apogee; no descent, JIT or cluster)",
                          field="stages")
-
-    def run_batch(self, P, *, descent: bool = False):
-        return self.__getattr__("run_batch")
 
     # ------------------------------------------------------------------ booster
     def _booster_functions(self):
@@ -190,17 +199,42 @@ class StagedFlightModel:
                 raise SolverError("the booster did not reach the ground within the time limit")
         return out
 
+    def final_state_symbolic(self, p, T, t_rail_guess: float):
+        """MX state of the sustainer at time ``T`` [s] in its coast, through every
+        phase (rail exit by the stack's rootfinder); what ballast and
+        sensitivities differentiate.  Returns ``(x_T, t_rail, x_rail, X_boost)``."""
+        st = self.stack
+        P = params.unpack(p)
+        s = P["burn_time_scale"]
+        t_r = st.rail_exit_root(t_rail_guess, p)
+        x_r = st.trajectory["rail"](st.initial_state(p), 0, t_r, p)[:, -1]
+        t_b1 = float(self.setup.stack.motor.burn_time) * s
+        X_b = st.trajectory["boost"](x_r, t_r, t_b1, p)
+        x, t_s = X_b[:, -1], t_b1
+        if self.setup.separation_delay > 0:
+            t_s = t_b1 + self.setup.separation_delay * s
+            x = self._traj["stack_coast"](x, t_b1, t_s, p)[:, -1]
+        x = self.separate(x, t_s, p)
+        t_b2 = float(self.setup.sustainer.motor.burn_time) * s
+        x = self._traj["sustainer_boost"](x, t_s, t_b2, p)[:, -1]
+        return self._traj["coast"](x, t_b2, T, p)[:, -1], t_r, x_r, X_b
+
+    def run_batch(self, P, *, descent: bool = False) -> dict:
+        """:meth:`run` for each column of ``P`` (params.SIZE x n): the Monte Carlo path
+        (a loop: staged rockets are not mapped over samples yet)."""
+        if descent:
+            raise InputError("descent of staged rockets is not built yet", field="stages")
+        P = np.asarray(P, dtype=float)
+        runs = [self.run(P[:, i]) for i in range(P.shape[1])]
+        x_a = np.column_stack([r["x_apogee"] for r in runs])
+        return dict(apogee_agl=x_a[2], t_apogee=np.array([r["t_apogee"] for r in runs]),
+                    t_rail=np.array([r["t_rail"] for r in runs]),
+                    rail_exit_speed=np.array([np.linalg.norm(r["x_rail"][3:6]) for r in runs]),
+                    t_burnout=np.array([r["t_burnout"] for r in runs]), x_apogee=x_a)
+
     def _separate(self, x, t, p):
         """Stack state -> sustainer state at separation (rigid-body CG shift)."""
-        y_stack = np.array(self.rhs["stack_coast"](x, t, p)[1]).ravel()
-        y_sus = np.array(self.rhs["coast"](x, t, p)[1]).ravel()
-        i_cg = rhs_mod.OUTPUT_NAMES.index("cg_x_m")
-        d = y_stack[i_cg] - y_sus[i_cg]               # [m] sustainer CG ahead of the stack's (body +x)
-        t_lb = np.array(rotation_matrix(x[6:10]))
-        out = x.copy()
-        out[0:3] = x[0:3] + t_lb @ np.array([d, 0.0, 0.0])
-        out[3:6] = x[3:6] + np.cross(x[10:13], np.array([d, 0.0, 0.0]))
-        return out, d
+        return np.array(self.separate(x, t, p)).ravel(), None
 
     def run(self, p, *, descent: bool = False) -> dict:
         """Fly to the sustainer's apogee (see the module docstring).

@@ -1,6 +1,6 @@
 """Serial two-stage OpenRocket designs -> :class:`~ironbark_opt.dynamics.staged.StagedSetup`.
 
-Supported (numeric-only): two axial stages; the booster's motor lit at
+Supported (numeric-only reading): two axial stages; the booster's motor lit at
 launch; the sustainer's motor lit at the booster's ``burnout`` + delay; the
 booster separating at ``burnout`` or ``upperignition`` + the same delay
 (OpenRocket's stage separation settings, per configuration).  Each stage has
@@ -126,7 +126,9 @@ def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
                                  (spec_b.nozzle_x, spec_s.nozzle_x), spec_b.nozzle_x)
     delay = ev["delay"]
     sus_motor = DelayedMotor(sustainer_motor, booster_motor.burn_time + delay)
-    stack = dataclasses.replace(setups["stack"], motor=stack_motor, name=f"{doc.name} (stack)")
+    # Ballast sits in the sustainer (same nose-tip origin as the stack): nominal at its dry CG.
+    nominal = {**setups["stack"].nominal, "ballast_x": setups["sustainer"].nominal["ballast_x"]}
+    stack = dataclasses.replace(setups["stack"], motor=stack_motor, name=f"{doc.name} (stack)", nominal=nominal)
     sustainer = dataclasses.replace(setups["sustainer"], motor=sus_motor, name=doc.name)
     booster, x0 = booster_setup(doc, cfg, spec_b, launch, **setup_kwargs)
     return StagedSetup(stack, sustainer, delay, doc.rocket.stages[1].name, doc.rocket.stages[0].name,

@@ -67,9 +67,37 @@ def test_each_stored_simulation(index):
     assert s["booster_landing_east_m"] * b["east_m"].iloc[-1] > 0          # same side of the pad
 
 
-def test_staged_rockets_refuse_what_is_not_built():
+def test_ballast_sensitivities_and_montecarlo_of_a_staged_rocket(tmp_path):
+    """The staged sequence is one differentiable graph: the ballast for a target
+    re-simulates onto it, AD derivatives equal central differences, and Monte
+    Carlo flies each sample like a single run."""
+    from ironbark_opt import params
+    from ironbark_opt.analysis.distributions import load_spec
+    from ironbark_opt.analysis.montecarlo import montecarlo
+    from ironbark_opt.analysis.sensitivity import sensitivities
+    from ironbark_opt.flight import flight_model
     from ironbark_opt.optimise.ballast import solve_ballast
 
-    setup = load_setup(ORK, rail_exit="travel")
-    with pytest.raises(InputError, match="staged rockets fly with 'simulate' only"):
-        solve_ballast(setup, 500.0)
+    setup = load_setup(ORK, config="fadeeef3", rail_exit="travel")
+    sol = solve_ballast(setup, 1250.0)
+    again = simulate(setup, parameters={"ballast_mass": sol.ballast, "ballast_x": sol.values["ballast_x_m"]})
+    print(f"ballast {sol.ballast:.4f} kg at {sol.values['ballast_x_m']:.3f} m for 1250 m: re-simulated "
+          f"{again.apogee_agl:.3f} m")
+    assert sol.feasible and abs(again.apogee_agl - 1250.0) < 1.0
+    assert sol.values["ballast_x_m"] == pytest.approx(setup.sustainer.dry.cg_x)     # in the sustainer
+    sens = sensitivities(setup, names=["ballast_mass", "drag_scale"])
+    model, p0 = flight_model(setup), setup.nominal_parameters()
+    for j, name in enumerate(("ballast_mass", "drag_scale")):
+        up, down = p0.copy(), p0.copy()
+        up[params.index(name)] += 0.01
+        down[params.index(name)] -= 0.01
+        fd = (model.run(up)["x_apogee"][2] - model.run(down)["x_apogee"][2]) / 0.02
+        print(f"d apogee / d {name}: AD {sens.jacobian[0, j]:.3f}, central difference {fd:.3f}")
+        assert sens.jacobian[0, j] == pytest.approx(fd, rel=0.01)
+    spec_file = tmp_path / "dispersions.toml"
+    spec_file.write_text('seed = 3\n[parameters.drag_scale]\ndistribution = "normal"\nstd = 0.05\n')
+    df = montecarlo(setup, load_spec(spec_file), 4, progress=False).to_dataframe()
+    print(df[["drag_scale", "apogee_agl_m"]])
+    for _, row in df.iterrows():                                   # each sample = a single run
+        p = setup.nominal_parameters(drag_scale=row["drag_scale"])
+        assert row["apogee_agl_m"] == pytest.approx(model.run(p)["x_apogee"][2], abs=1e-6)
