@@ -117,7 +117,7 @@ def run_controlled(model, p, *, descent: bool = False) -> dict:
     else:
         raise SolverError(f"apogee not reached within {MAX_COAST_S:.0f} s of coast")
     n_r, n_b = X_rail.shape[1], X_boost.shape[1]
-    t_all = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], t_r + (t_b - t_r) * np.arange(1, n_b + 1) / n_b,
+    t_all = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], model.boost_times(t_r, t_b, p),
                             np.array(ts)])
     x_all = np.hstack([x0[:, None], X_rail, X_boost] + xs)
     phase = np.array(["rail"] * (n_r + 1) + ["boost"] * n_b + ["coast"] * len(ts))

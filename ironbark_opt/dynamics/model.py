@@ -121,9 +121,48 @@ class FlightModel:
         """Coast step boundaries as fractions of the coast (n_coast + 1)."""
         return grid_fractions(self.n_coast, self.coast_grading)
 
+    def _boost_segments(self, n: int) -> list[tuple[float | None, float | None, int]]:
+        """The boost grid split at the motor's ignition/burnout events (air-start),
+        so no thrust jump falls inside a step: [(start, end, steps)] with start/end
+        unscaled event times [s] (None = rail exit / burnout)."""
+        events = tuple(getattr(self.setup.motor, "events", ()))
+        burn = float(self.setup.motor.burn_time)
+        if not events:
+            return [(None, None, n)]
+        bounds = [None, *events, None]
+        lengths = np.diff([0.0, *events, burn])
+        counts = [max(4, int(round(n * length / burn))) for length in lengths]
+        return [(bounds[i], bounds[i + 1], counts[i]) for i in range(len(counts))]
+
+    def _segmented_boost(self, n: int) -> ca.Function:
+        """``(x0, t_rail, t_burnout, p) -> X`` over the segments of :meth:`_boost_segments`
+        (event times scaled by ``burn_time_scale``); same signature as a phase trajectory."""
+        x0, t0, t1 = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("t1")
+        p = ca.MX.sym("p", params.SIZE)
+        s = p[params.index("burn_time_scale")]
+        x, blocks = x0, []
+        for i, (a, b, k) in enumerate(self._boost_segments(n)):
+            traj = phase_trajectory(self.step["boost"], k, f"traj_boost_{i}")
+            X = traj(x, t0 if a is None else a * s, t1 if b is None else b * s, p)
+            blocks.append(X)
+            x = X[:, -1]
+        return ca.Function("traj_boost", [x0, t0, t1, p], [ca.hcat(blocks)], ["x0", "t0", "t1", "p"], ["X"])
+
+    def boost_times(self, t_r: float, t_b: float, p) -> np.ndarray:
+        """Times [s] of the boost trajectory's columns (after each step)."""
+        s = float(np.asarray(p, dtype=float).ravel()[params.index("burn_time_scale")])
+        out = []
+        for a, b, k in self._boost_segments(self.n_boost):
+            lo, hi = (t_r if a is None else a * s), (t_b if b is None else b * s)
+            out.append(lo + (hi - lo) * np.arange(1, k + 1) / k)
+        return np.concatenate(out)
+
     def _set_trajectory(self, phase: str, n: int):
         grading = self.coast_grading if phase == "coast" else 1.0
-        self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
+        if phase == "boost" and getattr(self.setup.motor, "events", ()):
+            self.trajectory[phase] = self._segmented_boost(n)
+        else:
+            self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
         self._run[phase] = compile_function(self.trajectory[phase]) if self.jit else self.trajectory[phase]
         for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0] == phase]:
             del self._map_cache[key]
@@ -354,7 +393,7 @@ class FlightModel:
         x_a = np.array(self._mapped("step", 1)(x_k, t_k, h, p)).ravel()
         t_a = t_k + h
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
-        t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], t_r + (t_b - t_r) * np.arange(1, n_b + 1) / n_b,
+        t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], self.boost_times(t_r, t_b, p),
                             t_b + span * fr[1:k + 1], [t_a]])
         x = np.hstack([x0[:, None], X_rail, X_boost, X_coast[:, :k], x_a[:, None]])
         phase = np.array(["rail"] * (n_r + 1) + ["boost"] * n_b + ["coast"] * (k + 1))
@@ -433,7 +472,7 @@ class FlightModel:
             raise SolverError("rail exit did not converge for some samples")
         t_r = t_a
         x_r = travel(t_r)[1][:, :, -1]
-        nb = self.n_boost
+        nb = self.trajectory["boost"].size2_out(0)          # n_boost, or the segments' total
         x_b = np.array(self._mapped("boost", n)(x_r, t_r[None, :], burn[None, :], P)).reshape(13, n, nb)[:, :, -1]
         vz_b = np.array(self._mapped("vz", n)(x_b)).ravel()
         t_end = burn + vz_b / G0 + 2.0

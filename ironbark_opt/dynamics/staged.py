@@ -256,7 +256,7 @@ class StagedFlightModel:
         X_rail = np.array(st._run["rail"](x0, 0.0, t_r, p))
         X_boost = np.array(st._run["boost"](X_rail[:, -1], t_r, t_b1, p))
         parts_t = [np.array([0.0]), np.linspace(0, t_r, X_rail.shape[1] + 1)[1:],
-                   t_r + (t_b1 - t_r) * np.arange(1, X_boost.shape[1] + 1) / X_boost.shape[1]]
+                   st.boost_times(t_r, t_b1, p)]
         parts_x = [x0[:, None], X_rail, X_boost]
         phases = ["rail"] * (X_rail.shape[1] + 1) + ["boost"] * X_boost.shape[1]
         x, t_s = X_boost[:, -1], t_b1

@@ -15,12 +15,10 @@ the roll inertia only, neglected as for clusters).  The burn-time scale of
 :class:`~ironbark_opt.motors.base.Motor` stretches the whole sequence
 (ignition delays included).  Symbolic-safe like every motor.
 
-Limitation: the flight core's boost phase runs from rail exit to the last
-burnout on one uniform RK4 grid, so an air-start ignition (a thrust jump)
-falls inside a step: the flight is accurate to the step (0.02 s), apogee is
-continuous in the parameters but its derivative has a small kink where a
-grid node crosses the ignition time.  :attr:`CompositeMotor.events` lists
-those times for a future split of the boost phase.
+The flight core splits the boost phase at every ignition and burnout in
+between (:attr:`CompositeMotor.events`, scaled by the burn-time scale), so
+no thrust jump falls inside an RK4 step and apogee stays smooth in the
+parameters (an event before rail exit is not supported).
 """
 from __future__ import annotations
 
