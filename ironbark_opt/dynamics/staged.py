@@ -127,57 +127,42 @@ class StagedFlightModel:
                          "sensitivity and montecarlo to the sustainer's apogee; no descent, JIT or cluster)",
                          field="stages")
 
-    # ------------------------------------------------------------------ booster
-    def _booster_functions(self):
-        cache = self.__dict__.setdefault("_booster_cache", {})
-        if not cache:
-            b = self.setup.booster
-            cache["coast_rhs"] = rhs_mod.build(b, "coast")
-            cache["coast"] = phase_trajectory(rk4_step(cache["coast_rhs"], "step_bc"), 100, "traj_bc")
-            for i, (_, cd_area) in enumerate(self._booster_stages()):
+    # ------------------------------------------------------------------ descents
+    def _down_functions(self, key: str) -> dict:
+        """Coast and parachute trajectories of the booster or the sustainer alone."""
+        cache = self.__dict__.setdefault("_down_cache", {})
+        if key not in cache:
+            setup = self.setup.booster if key == "booster" else self.setup.sustainer
+            chutes = setup.parachutes
+            cd = sum(c.cd_area for c in chutes if c.deploy_altitude is None)
+            stages = [(None, cd)]
+            for alt in sorted({c.deploy_altitude for c in chutes if c.deploy_altitude is not None}, reverse=True):
+                cd += sum(c.cd_area for c in chutes if c.deploy_altitude == alt)
+                stages.append((alt, cd))
+            fns = {"stages": stages, "coast_rhs": self.rhs["coast"] if key == "sustainer" else rhs_mod.build(setup, "coast")}
+            fns["coast"] = phase_trajectory(rk4_step(fns["coast_rhs"], f"step_{key}_c"), 100, f"traj_{key}_c")
+            for i, (_, cd_area) in enumerate(stages):
                 if cd_area > 0:
-                    cache[i] = phase_trajectory(rk4_step(rhs_mod.build(b, "descent", cd_area=cd_area), "step_bd"),
-                                                100, f"traj_bd{i}")
-        return cache
+                    fns[i] = phase_trajectory(rk4_step(rhs_mod.build(setup, "descent", cd_area=cd_area),
+                                                       f"step_{key}_d{i}"), 100, f"traj_{key}_d{i}")
+            cache[key] = fns
+        return cache[key]
 
-    def _booster_stages(self):
-        """[(altitude AGL where the stage starts [m] or None at apogee, Cd*S [m^2])]."""
-        chutes = self.setup.booster.parachutes
-        cd = sum(c.cd_area for c in chutes if c.deploy_altitude is None)
-        out = [(None, cd)]
-        for alt in sorted({c.deploy_altitude for c in chutes if c.deploy_altitude is not None}, reverse=True):
-            cd += sum(c.cd_area for c in chutes if c.deploy_altitude == alt)
-            out.append((alt, cd))
-        return out
-
-    def fly_booster(self, x_stack, t_s, p) -> dict:
-        """The booster from separation to the ground (numeric): 6-DOF coast to its
-        apogee (0.01 s steps), then point mass under its chutes (0.05 s steps;
-        ballistic 6-DOF if it has none); events at the first sample past them,
-        landing interpolated linearly between samples.
-
-        Returns dict ``booster_apogee_agl_m``, ``booster_apogee_time_s``,
-        ``booster_landing_time_s``, ``booster_landing_east_m``, ``booster_landing_north_m``.
-        """
-        fn = self._booster_functions()
-        i_cg = rhs_mod.OUTPUT_NAMES.index("cg_x_m")
-        cg_stack = float(np.array(self.rhs["stack_coast"](x_stack, t_s, p)[1]).ravel()[i_cg])
-        cg_b = float(np.array(fn["coast_rhs"](x_stack, t_s, p)[1]).ravel()[i_cg]) + self.setup.booster_x
-        e = np.array([-(cg_b - cg_stack), 0.0, 0.0])          # booster CG from the stack's, body axes
-        x = x_stack.copy()
-        x[0:3] = x_stack[0:3] + np.array(rotation_matrix(x_stack[6:10])) @ e
-        x[3:6] = x_stack[3:6] + np.cross(x_stack[10:13], e)
-        t, out = t_s, {}
-        stages = self._booster_stages()
-        for k in range(len(stages) + 1):
+    def _fly_down(self, key: str, x, t, p, *, to_apogee: bool) -> dict:
+        """Numeric flight of one vehicle to the ground: (optionally) 6-DOF coast to its
+        apogee (0.01 s steps), then point mass under the chutes open at apogee and
+        those opening at their altitude on the way down (0.05 s steps; ballistic 6-DOF,
+        0.02 s, without a chute).  Events at the first sample past them; the landing
+        interpolated linearly between samples."""
+        fn = self._down_functions(key)
+        stages, out = fn["stages"], {}
+        for k in range(0 if to_apogee else 1, len(stages) + 1):
             if k == 0:
-                traj, dt, done = fn["coast"], 0.01, (lambda X: np.array(self.stack.vz_l.map(X.shape[1])(X)).ravel() <= 0)
+                traj, dt = fn["coast"], 0.01
+                done = (lambda X: np.array(self.stack.vz_l.map(X.shape[1])(X)).ravel() <= 0)
             else:
                 alt_end = stages[k][0] if k < len(stages) else 0.0
-                if stages[k - 1][1] <= 0:                     # no chute: ballistic to the ground
-                    traj, dt = fn["coast"], 0.02
-                else:
-                    traj, dt = fn[k - 1], 0.05
+                traj, dt = (fn["coast"], 0.02) if stages[k - 1][1] <= 0 else (fn[k - 1], 0.05)
                 done = (lambda X, a=alt_end: X[2] <= a)
             for _ in range(3000):
                 X = np.array(traj(x, t, t + 100 * dt, p))
@@ -185,19 +170,38 @@ class StagedFlightModel:
                 if hit.size:
                     j = int(hit[0])
                     prev = x if j == 0 else X[:, j - 1]
-                    if k == len(stages):                      # landing: interpolate z = 0
+                    if k == len(stages):
                         f = prev[2] / (prev[2] - X[2, j]) if prev[2] != X[2, j] else 1.0
-                        xl = prev + f * (X[:, j] - prev)
-                        out.update(booster_landing_time_s=float(t + (j + f) * dt), booster_landing_east_m=float(xl[0]),
-                                   booster_landing_north_m=float(xl[1]))
+                        out.update(t_landing=float(t + (j + f) * dt), x_landing=prev + f * (X[:, j] - prev))
                     x, t = X[:, j], t + (j + 1) * dt
                     if k == 0:
-                        out.update(booster_apogee_agl_m=float(max(prev[2], x[2])), booster_apogee_time_s=float(t))
+                        out.update(apogee_agl=float(max(prev[2], x[2])), t_apogee=float(t))
                     break
                 x, t = X[:, -1], t + 100 * dt
             else:
-                raise SolverError("the booster did not reach the ground within the time limit")
+                raise SolverError(f"the {key} did not reach the ground within the time limit")
         return out
+
+    def fly_booster(self, x_stack, t_s, p) -> dict:
+        """The booster from separation (its CG placed from the stack's by the rigid
+        body's geometry) to its apogee and the ground (:meth:`_fly_down`).
+
+        Returns dict ``booster_apogee_agl_m``, ``booster_apogee_time_s``,
+        ``booster_landing_time_s``, ``booster_landing_east_m``, ``booster_landing_north_m``.
+        """
+        fn = self._down_functions("booster")
+        i_cg = rhs_mod.OUTPUT_NAMES.index("cg_x_m")
+        cg_stack = float(np.array(self.rhs["stack_coast"](x_stack, t_s, p)[1]).ravel()[i_cg])
+        cg_b = float(np.array(fn["coast_rhs"](x_stack, t_s, p)[1]).ravel()[i_cg]) + self.setup.booster_x
+        e = np.array([-(cg_b - cg_stack), 0.0, 0.0])          # booster CG from the stack's, body axes
+        x = x_stack.copy()
+        x[0:3] = x_stack[0:3] + np.array(rotation_matrix(x_stack[6:10])) @ e
+        x[3:6] = x_stack[3:6] + np.cross(x_stack[10:13], e)
+        d = self._fly_down("booster", x, t_s, p, to_apogee=True)
+        xl = d["x_landing"]
+        return dict(booster_apogee_agl_m=d["apogee_agl"], booster_apogee_time_s=d["t_apogee"],
+                    booster_landing_time_s=d["t_landing"], booster_landing_east_m=float(xl[0]),
+                    booster_landing_north_m=float(xl[1]))
 
     def final_state_symbolic(self, p, T, t_rail_guess: float):
         """MX state of the sustainer at time ``T`` [s] in its coast, through every
@@ -222,15 +226,15 @@ class StagedFlightModel:
     def run_batch(self, P, *, descent: bool = False) -> dict:
         """:meth:`run` for each column of ``P`` (params.SIZE x n): the Monte Carlo path
         (a loop: staged rockets are not mapped over samples yet)."""
-        if descent:
-            raise InputError("descent of staged rockets is not built yet", field="stages")
         P = np.asarray(P, dtype=float)
-        runs = [self.run(P[:, i]) for i in range(P.shape[1])]
+        runs = [self.run(P[:, i], descent=descent) for i in range(P.shape[1])]
         x_a = np.column_stack([r["x_apogee"] for r in runs])
         return dict(apogee_agl=x_a[2], t_apogee=np.array([r["t_apogee"] for r in runs]),
                     t_rail=np.array([r["t_rail"] for r in runs]),
                     rail_exit_speed=np.array([np.linalg.norm(r["x_rail"][3:6]) for r in runs]),
-                    t_burnout=np.array([r["t_burnout"] for r in runs]), x_apogee=x_a)
+                    t_burnout=np.array([r["t_burnout"] for r in runs]), x_apogee=x_a,
+                    **({} if not descent else dict(t_landing=np.array([r["t_landing"] for r in runs]),
+                                                   x_landing=np.column_stack([r["x_landing"] for r in runs]))))
 
     def _separate(self, x, t, p):
         """Stack state -> sustainer state at separation (rigid-body CG shift)."""
@@ -241,12 +245,12 @@ class StagedFlightModel:
 
         Returns
         -------
-        dict as :meth:`FlightModel.run` (``t_burnout``: the sustainer's burnout)
+        dict as :meth:`FlightModel.run` (``t_burnout``: the sustainer's burnout; with
+        ``descent`` the sustainer's ``t_landing`` and ``x_landing``, the time series
+        ending at apogee)
         plus ``t_separation`` [s], ``x_separation`` (13,), ``t_booster_burnout`` [s]
         and ``booster`` (:meth:`fly_booster`, when the setup has the booster).
         """
-        if descent:
-            raise InputError("descent of staged rockets is not built yet", field="stages")
         st = self.stack
         p = np.asarray(p, dtype=float).ravel()
         s = p[params.index("burn_time_scale")]
@@ -306,7 +310,8 @@ class StagedFlightModel:
         parts_t += [t_b2 + dt * np.arange(1, k + 1), np.array([t_a])]
         parts_x += [X_c[:, :k], x_a[:, None]]
         phases += ["coast"] * (k + 1)
-        return dict(t=np.concatenate(parts_t), x=np.hstack(parts_x), phase=np.array(phases), p=p,
+        out = {} if not descent else self._fly_down("sustainer", x_a, t_a, p, to_apogee=False)
+        return dict(t=np.concatenate(parts_t), x=np.hstack(parts_x), phase=np.array(phases), p=p, **out,
                     t_rail=t_r, t_burnout=t_b2, t_apogee=t_a, x_rail=X_rail[:, -1].copy(), x_burnout=x_b,
                     x_apogee=x_a, t_separation=t_s, x_separation=x_sep, t_booster_burnout=t_b1,
                     booster=self.fly_booster(x, t_s, p) if self.setup.booster is not None else {})

@@ -65,6 +65,14 @@ def test_each_stored_simulation(index):
     assert s["booster_apogee_agl_m"] == pytest.approx(b["altitude_m"].max(), rel=0.40)
     assert s["booster_landing_time_s"] == pytest.approx(b["time_s"].iloc[-1], rel=0.40)
     assert s["booster_landing_east_m"] * b["east_m"].iloc[-1] > 0          # same side of the pad
+    # The sustainer down under its drogue and main: landing time against OpenRocket's
+    # sustainer branch (10 %), on the same side of the pad.
+    down = simulate(setup, descent=True).summary_values
+    sus = sim.branches["Sustainer"]
+    print(f"  sustainer lands at {down['landing_time_s']:.1f} s (OpenRocket {sus['time_s'].iloc[-1]:.1f} s), "
+          f"{down['landing_east_m']:.1f} m east (OpenRocket {sus['east_m'].iloc[-1]:.1f} m)")
+    assert down["landing_time_s"] == pytest.approx(sus["time_s"].iloc[-1], rel=0.10)
+    assert down["landing_east_m"] * sus["east_m"].iloc[-1] > 0
 
 
 def test_ballast_sensitivities_and_montecarlo_of_a_staged_rocket(tmp_path):
