@@ -1,4 +1,4 @@
-"""The ``[airbrakes]`` section of the rocket TOML format (docs/rocket-toml.md).
+"""The ``[airbrakes]`` and ``[[airstart]]`` sections of the rocket TOML format (docs/rocket-toml.md).
 
 Numeric-only: reads and checks the keys; :func:`airbrake_schedule` turns the
 spec into the :class:`~ironbark_opt.aero.airbrakes.BrakeSchedule` the flight
@@ -101,3 +101,38 @@ def airbrake_schedule(spec: AirbrakeSpec | None) -> BrakeSchedule | None:
     controller = load_controller(spec.controller) if spec.controller else None
     return BrakeSchedule(drag=drag, trigger=spec.trigger, start=spec.start, level=spec.level, rate=spec.rate,
                          ramp=spec.ramp, controller=controller, sampling_rate=spec.sampling_rate)
+
+
+AIRSTART_KEYS = ("file", "designation", "nozzle_x", "ignition_time")
+
+
+def read_airstart(rd, items) -> tuple:
+    """``[[airstart]]`` tables -> ((MotorSpec, ignition time [s after launch]), ...):
+    further motors of the (single) stage lit in flight, flown with ``[motor]`` as one
+    :class:`~ironbark_opt.motors.composite.CompositeMotor`."""
+    from ironbark_opt.rocket.specs import MotorSpec
+
+    if not isinstance(items, list):
+        raise rd.error("expected [[airstart]] tables", "airstart")
+    out = []
+    for i, d in enumerate(items):
+        label = f"airstart[{i}]"
+        rd.check_keys(d, AIRSTART_KEYS, "airstart", i, label)
+        if not isinstance(d.get("file"), str):
+            raise rd.error("missing required key 'file' (a thrust-curve path)", "airstart", None, i,
+                           field=f"{label}.file")
+        file = (rd.path.parent / d["file"]).resolve()
+        if not file.is_file():
+            raise rd.error(f"file not found: {file}", "airstart", "file", i, field=f"{label}.file")
+        des = d.get("designation")
+        if des is not None and not isinstance(des, str):
+            raise rd.error(f"expected a string, got {des!r}", "airstart", "designation", i, field=f"{label}.designation")
+        nozzle = rd.number(d, "nozzle_x", "airstart", i, label, required=True)
+        t_ign = rd.number(d, "ignition_time", "airstart", i, label, required=True)
+        if nozzle < 0:
+            raise rd.error(f"must be >= 0 m, got {nozzle}", "airstart", "nozzle_x", i, field=f"{label}.nozzle_x")
+        if t_ign <= 0:
+            raise rd.error(f"must be > 0 s after launch (the [motor] lights at launch), got {t_ign}", "airstart",
+                           "ignition_time", i, field=f"{label}.ignition_time")
+        out.append((MotorSpec(file=file, designation=des, nozzle_x=nozzle), t_ign))
+    return tuple(out)

@@ -28,7 +28,7 @@ from ironbark_opt.rocket.specs import (GRAIN_KEYS, MOTOR_OVERRIDE_KEYS, AeroSpec
 #: largest magnitude accepted for any number (guards overflow in the mass sums)
 MAX_MAGNITUDE = 1e9
 
-TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes")
+TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart")
 ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
 _BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass")
@@ -253,7 +253,13 @@ def loads_rocket_toml(text: str, path) -> RocketFile:
         if val is not None and val > rocket.length():
             raise rd.error(f"{val} m lies aft of the rocket's end ({rocket.length():.6g} m)",
                            "ballast", key)
-    return RocketFile(rocket=rocket, motor=_read_motor(rd, data["motor"]),
+    motor = _read_motor(rd, data["motor"])
+    if "airstart" in data:
+        import dataclasses
+
+        from ironbark_opt.rocket.airbrake_spec import read_airstart
+        motor = dataclasses.replace(motor, airstart=read_airstart(rd, data["airstart"]))
+    return RocketFile(rocket=rocket, motor=motor,
                       aero=_read_aero(rd, data.get("aero", {})),
                       launch=_read_launch(rd, data.get("launch", {})),
                       recovery=_read_recovery(rd, data.get("recovery", [])),
