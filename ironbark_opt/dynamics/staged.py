@@ -26,6 +26,7 @@ flight; Monte Carlo loops over samples (:meth:`StagedFlightModel.run_batch`).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -68,10 +69,26 @@ class StagedSetup:
     sustainer_name: str = "sustainer"
     booster: object = None
     booster_x: float = 0.0
+    #: Launch environment shared by every vehicle: given (e.g. through
+    #: ``dataclasses.replace(staged, atmosphere=..., site_elevation=..., latitude=...)``,
+    #: as the CLI does for a forecast), they replace the vehicles' own.
+    atmosphere: object = None
+    site_elevation: float | None = None
+    latitude: float | None = None
+
+    def __post_init__(self):
+        env = {k: getattr(self, k) for k in ("atmosphere", "site_elevation", "latitude")
+               if getattr(self, k) is not None}
+        if env:
+            for key in ("stack", "sustainer", "booster"):
+                vehicle = getattr(self, key)
+                if vehicle is not None:
+                    object.__setattr__(self, key, dataclasses.replace(vehicle, **env))
+        for k in ("atmosphere", "site_elevation", "latitude"):
+            object.__setattr__(self, k, getattr(self.stack, k))
 
     # What simulate() and the summary read from a setup:
     name = property(lambda self: self.sustainer.name)
-    site_elevation = property(lambda self: self.stack.site_elevation)
     aero = property(lambda self: self.sustainer.aero)
     motor = property(lambda self: self.sustainer.motor)
     source = property(lambda self: self.stack.source)

@@ -109,3 +109,16 @@ def test_ballast_sensitivities_and_montecarlo_of_a_staged_rocket(tmp_path):
     for _, row in df.iterrows():                                   # each sample = a single run
         p = setup.nominal_parameters(drag_scale=row["drag_scale"])
         assert row["apogee_agl_m"] == pytest.approx(model.run(p)["x_apogee"][2], abs=1e-6)
+
+
+def test_launch_environment_replaces_every_vehicles():
+    """dataclasses.replace(staged, site_elevation=...) (the CLI's --elevation, a forecast)
+    reaches the stack, the sustainer and the booster alike."""
+    import dataclasses
+
+    setup = load_setup(ORK, rail_exit="travel")
+    high = dataclasses.replace(setup, site_elevation=1500.0)
+    assert {high.stack.site_elevation, high.sustainer.site_elevation, high.booster.site_elevation} == {1500.0}
+    low, up = simulate(setup).apogee_agl, simulate(high).apogee_agl
+    print(f"apogee at sea level {low:.1f} m AGL, at 1500 m {up:.1f} m AGL")
+    assert up > low                                   # thinner air
