@@ -46,6 +46,10 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--ballast-x", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--free-position", is_flag=True, help="Optimise the position within the ballast bay too.")
 @click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True)
+@click.option("--solve", "solve_for", type=click.Choice(["ballast", "airbrake_level", "airbrake_start_time"]),
+              default="ballast", show_default=True,
+              help="What to solve for: ballast mass, or the air brakes' deployment level [-] or start "
+                   "time [s] (rocket files with [airbrakes]).")
 @table_option
 @click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
               help="Apply a calibration file (from 'ironbark calibrate --output').")
@@ -58,16 +62,25 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, forecast, site, time, min_rail_speed, min_margin,
-                    max_ballast, ballast_x, free_position, rail_exit, table, calibration_path, processes, executor, plot_path,
-                    as_json):
-    """Ballast (and motor) that put ROCKET's apogee on --target."""
+                    max_ballast, ballast_x, free_position, rail_exit, solve_for, table, calibration_path,
+                    processes, executor, plot_path, as_json):
+    """Ballast (and motor), or the air-brake deployment, that put ROCKET's apogee on --target."""
     from ironbark_opt.optimise.ballast import solve_ballast
     from ironbark_opt.optimise.motor_choice import choose_motor
     from ironbark_opt.vehicle import load_setup
 
-    from ironbark_opt.telemetry.calibration_file import apply_calibration
     setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table), forecast, site, time)
-    setup = apply_calibration(setup, calibration_path)
+    if calibration_path is not None:
+        from ironbark_opt.telemetry.calibration_file import apply_calibration
+        setup = apply_calibration(setup, calibration_path)
+    if solve_for != "ballast":
+        if motors or free_position or max_ballast is not None or ballast_x is not None:
+            raise click.UsageError(f"--solve {solve_for} takes no ballast or motor options")
+        from ironbark_opt.optimise.airbrakes import solve_airbrakes
+        solution = solve_airbrakes(setup, target, variable=solve_for)
+        _plot(setup, solution, plot_path)
+        emit(solution.to_dict(), as_json, solution.summary())
+        return
     kwargs = dict(mass_max=max_ballast, ballast_x=ballast_x, free_position=free_position,
                   min_rail_speed=min_rail_speed, min_margin=min_margin)
     if executor is not None and not motors:
@@ -106,6 +119,9 @@ def _plot(setup, solution, path):
     matplotlib.use("Agg")
     from ironbark_opt.flight import simulate
     from ironbark_opt.plots import plot_flight
+    if hasattr(solution, "variable"):                 # an AirbrakeSolution
+        plot_flight(simulate(setup, parameters=dict(solution.parameters)), filename=path)
+        return
     plot_flight(simulate(setup, parameters={"ballast_mass": solution.values["ballast_kg"],
                                             "ballast_x": solution.values["ballast_x_m"]}), filename=path)
 

@@ -25,7 +25,8 @@ def ork_summary(doc, config: str | None = None) -> dict:
                                     "delay_s": m.delay, "mount": mount.name,
                                     "count": mount.cluster_count,
                                     "nozzle_x_m": nozzle_x(mount, m),
-                                    "ignition": m.ignition_event} for mount, m in c.motors]})
+                                    "ignition": m.ignition_event, "ignition_delay_s": m.ignition_delay,
+                                    "stage": mount.stage} for mount, m in c.motors]})
     sims = []
     for s in doc.simulations:
         sims.append({"name": s.name, "config_id": s.config_id, **s.summary,
@@ -36,6 +37,7 @@ def ork_summary(doc, config: str | None = None) -> dict:
            "dry_cg_m": dry.cg_x, "dry_inertia_transverse_kgm2": dry.I_transverse,
            "stages": len(doc.rocket.stages), "components": tree, "configurations": configs,
            "simulations": sims}
+    out["stage_list"] = _stages(doc, config)
     from ironbark_opt.errors import InputError
     try:
         cfg = doc.config(config)
@@ -68,6 +70,31 @@ def ork_summary(doc, config: str | None = None) -> dict:
     return out
 
 
+def _stages(doc, config: str | None) -> list:
+    """One entry per axial stage: extent, dry mass, the selected configuration's
+    motors and (lower stages) separation setting; numeric-only."""
+    from ironbark_opt.errors import InputError
+    from ironbark_opt.openrocket import ormass
+    from ironbark_opt.openrocket.staging import _separation
+    try:
+        cfg = doc.config(config)
+    except InputError:
+        cfg = None
+    out = []
+    for i, st in enumerate(doc.rocket.stages):
+        mp = ormass.rocket_mass([st])
+        entry = {"index": i, "name": st.name, "x_m": st.x, "length_m": st.length, "dry_mass_kg": mp.mass,
+                 "dry_cg_m": mp.cg_x, "motors": []}
+        if cfg is not None:
+            entry["motors"] = [{"designation": m.designation, "mount": mount.name, "ignition": m.ignition_event,
+                                "ignition_delay_s": m.ignition_delay} for mount, m in cfg.motors if mount.stage == i]
+            if i > 0:
+                event, delay = _separation(st, cfg.config_id)
+                entry.update(separation=event, separation_delay_s=delay)
+        out.append(entry)
+    return out
+
+
 def _find(doc, entry):
     """The MotorMatch of an .ork motor, or None when no file is found (numeric-only)."""
     import warnings
@@ -96,6 +123,13 @@ def _human(info: dict) -> str:
         where = m["file"] or "not found"
         lines.append(f"  motor {m['designation']}: {where}"
                      f"{'' if m['file'] is None else ' (' + state[m['digest_verified']] + ')'}")
+    lines.append(f"stages ({len(info['stage_list'])}):")
+    for st in info["stage_list"]:
+        motors = ", ".join(f"{m['designation']} in '{m['mount']}' on {m['ignition']} + {m['ignition_delay_s']:g} s"
+                           for m in st["motors"]) or "no motor"
+        sep = f"; separates on {st['separation']} + {st['separation_delay_s']:g} s" if "separation" in st else ""
+        lines.append(f"  {st['index']}: {st['name']}, x = {st['x_m']:.4f}..{st['x_m'] + st['length_m']:.4f} m, "
+                     f"dry {st['dry_mass_kg']:.4f} kg (CG {st['dry_cg_m']:.4f} m); {motors}{sep}")
     lines.append("components:")
     for c in info["components"]:
         lines.append(f"  {'  ' * c['depth']}{c['kind']:<16} {c['name'][:34]:<34} x={c['x_m']:.4f} m "

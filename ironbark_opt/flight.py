@@ -30,7 +30,8 @@ def flight_model(setup, steps: Steps | None = None, jit="auto") -> FlightModel:
         ref, model = hit
         if ref() is setup and model.steps == (steps or Steps()) and model.jit == jit:
             return model
-    model = FlightModel(setup, steps, jit=jit)
+    from ironbark_opt.dynamics.staged import StagedFlightModel, StagedSetup
+    model = (StagedFlightModel if isinstance(setup, StagedSetup) else FlightModel)(setup, steps, jit=jit)
     _MODELS[key] = (weakref.ref(setup), model)
     return model
 
@@ -100,6 +101,16 @@ class Flight:
             f"{s['static_margin_initial_cal']:.2f} cal",
             f"  apogee drift       {s['apogee_east_m']:10.1f} m east, {s['apogee_north_m']:.1f} m north",
         ]
+        if "separation_time_s" in s:
+            lines.append(f"  separation         {s['separation_time_s']:10.2f} s at {s['separation_altitude_agl_m']:.1f} m "
+                         f"AGL (booster burnout {s['booster_burnout_time_s']:.2f} s)")
+        if "booster_landing_time_s" in s:
+            lines.append(f"  booster            apogee {s['booster_apogee_agl_m']:.1f} m AGL at "
+                         f"{s['booster_apogee_time_s']:.2f} s, lands at {s['booster_landing_time_s']:.1f} s, "
+                         f"{s['booster_landing_east_m']:.1f} m east, {s['booster_landing_north_m']:.1f} m north")
+        if "airbrake_max_deployment" in s:
+            lines.append(f"  air brakes         {s['airbrake_max_deployment']:10.3f} max deployment, opening from "
+                         f"{s['airbrake_open_time_s']:.2f} s at up to {s['airbrake_max_rate_per_s']:.2f} /s")
         if "landing_time_s" in s:
             lines.append(f"  landing            {s['landing_time_s']:10.1f} s, {s['landing_east_m']:.1f} m east, "
                          f"{s['landing_north_m']:.1f} m north ({s['landing_distance_m']:.1f} m from the rail)")
@@ -107,7 +118,7 @@ class Flight:
 
 
 def _table(model: FlightModel, run: dict) -> dict[str, np.ndarray]:
-    t, x, phase, p = run["t"], run["x"], run["phase"], run["p"]
+    t, x, phase, p = run["t"], run["x"], run["phase"], run.get("P", run["p"])
     y = model.outputs(t, x, phase, p)
     q = x[6:10]
     q0, q1, q2, q3 = q
@@ -143,7 +154,7 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
     rail = int(np.flatnonzero(time <= run["t_rail"] + 1e-12)[-1])
     i_vmax = int(df["speed_mps"].argmax())
     burn = int(np.flatnonzero(time <= run["t_burnout"] + 1e-12)[-1])
-    flying = np.isin(df["phase"], ["rail", "boost", "coast"])
+    flying = np.isin(df["phase"], ["rail", "boost", "coast", "stack_coast", "sustainer_boost"])
     s = {
         "apogee_agl_m": float(x_a[2]),
         "apogee_asl_m": float(x_a[2] + elev),
@@ -164,6 +175,24 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
         "launch_mass_kg": float(df["mass_kg"][0]),
         "site_elevation_m": float(elev),
     }
+    if "t_separation" in run:                    # a staged rocket (dynamics/staged.py)
+        s.update(booster_burnout_time_s=float(run["t_booster_burnout"]),
+                 separation_time_s=float(run["t_separation"]),
+                 separation_altitude_agl_m=float(run["x_separation"][2]), **run.get("booster", {}))
+    brakes = getattr(model.setup, "airbrakes", None)
+    if brakes is not None:
+        up = df[flying]
+        dep, tt = up["airbrake_deployment"].values, up["time_s"].values
+        rate = np.diff(dep) / np.maximum(np.diff(tt), 1e-12)
+        s.update(airbrake_max_deployment=float(dep.max()),
+                 airbrake_max_rate_per_s=float(np.abs(rate).max()) if rate.size else 0.0)
+        opened = np.nonzero(dep > 1e-6)[0]
+        s["airbrake_open_time_s"] = float(tt[opened[0]]) if opened.size else float("nan")
+        if brakes.rate is not None and brakes.trigger in ("altitude", "mach", "vertical_speed") and \
+                s["airbrake_max_rate_per_s"] > brakes.rate * 1.01:
+            warnings.warn(f"{model.setup.name}: the air brakes opened at up to {s['airbrake_max_rate_per_s']:.2f} /s, "
+                          f"faster than their rate limit {brakes.rate:g} /s: increase [airbrakes] ramp",
+                          UserWarning, stacklevel=3)
     if "t_landing" in run:
         xl = run["x_landing"]
         s.update(landing_time_s=float(run["t_landing"]), landing_east_m=float(xl[0]),
@@ -223,7 +252,12 @@ def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
     if p is None:
         p = setup.nominal_parameters(**dict(parameters or {}))
     p = np.asarray(p, dtype=float).ravel()
-    run = model.run(p, descent=descent)
+    brakes = getattr(setup, "airbrakes", None)
+    if brakes is not None and not brakes.differentiable:
+        from ironbark_opt.dynamics.controlled import run_controlled
+        run = run_controlled(model, p, descent=descent)
+    else:
+        run = model.run(p, descent=descent)
     df = _table(model, run)
     _warn_outside_table(setup, df)
     return Flight(name=setup.name, parameters=params_mod.to_dict(p), summary_values=_summary(model, run, df),

@@ -57,6 +57,8 @@ PARAMETERS: tuple[ParameterInfo, ...] = (
     ParameterInfo("inclination", "rad", np.deg2rad(85.0), "rail angle above horizontal"),
     ParameterInfo("heading", "rad", 0.0, "rail heading, clockwise from north"),
     ParameterInfo("temperature_offset", "K", 0.0, "air temperature offset at constant pressure"),
+    ParameterInfo("airbrake_level", "-", 0.0, "air-brake deployment once open (0 stowed, 1 open)"),
+    ParameterInfo("airbrake_start_time", "s", 0.0, "air brakes start opening (time trigger), after ignition"),
 )
 
 NAMES: tuple[str, ...] = tuple(info.name for info in PARAMETERS)

@@ -24,7 +24,15 @@ RAIL_EXIT_RULES = ("forward_button", "aft_button", "travel")
 
 
 def load_motor_for(spec):
-    """The motor a :class:`MotorSpec` names, with its overrides applied."""
+    """The motor a :class:`MotorSpec` names, with its overrides applied (with
+    air-start motors: a :class:`~ironbark_opt.motors.composite.CompositeMotor`)."""
+    if spec.airstart:
+        from ironbark_opt.motors.composite import CompositeMotor
+        first = dataclasses.replace(spec, airstart=())
+        parts = [(load_motor_for(first), 0.0, spec.nozzle_x)] + \
+            [(load_motor_for(s), float(t), s.nozzle_x) for s, t in spec.airstart]
+        return CompositeMotor(tuple(m for m, _, _ in parts), tuple(t for _, t, _ in parts),
+                              tuple(x for _, _, x in parts), spec.nozzle_x)
     from ironbark_opt.motors import load_motor
     from ironbark_opt.motors.grains import Grains
 
@@ -137,6 +145,11 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
         "ballast_mass": ballast.mass,
         "ballast_x": ballast.x if ballast.x is not None else float(rocket.dry_mass_properties().cg_x),
     }
+    brakes = None
+    if getattr(rf, "airbrakes", None) is not None:
+        from ironbark_opt.rocket.airbrake_spec import airbrake_schedule
+        brakes = airbrake_schedule(rf.airbrakes)
+        nominal.update(brakes.nominal())
     chutes = tuple(Parachute(r.name, r.cd_area, None if r.deploy == "apogee" else float(r.deploy), r.lag)
                    for r in rf.recovery)
     return FlightSetup(motor=motor, nozzle_x=rf.motor.nozzle_x, dry=DryMass.from_properties(rocket.dry_mass_properties()),
@@ -145,7 +158,7 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                        nominal=nominal, parachutes=chutes, name=rocket.name,
                        ballast_mass_max=ballast.mass_max,
                        ballast_x_range=None if ballast.x_min is None else (ballast.x_min, ballast.x_max),
-                       source=str(rf.source))
+                       source=str(rf.source), airbrakes=brakes)
 
 
 def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> FlightSetup:
@@ -163,6 +176,15 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     kwargs
         As in :func:`setup_from_file`.
     """
+    if Path(path).suffix.lower() == ".ork":
+        from ironbark_opt.openrocket import read_ork
+        doc = read_ork(_existing(path))
+        if len(doc.rocket.stages) > 1:
+            from ironbark_opt.openrocket.staging import staged_setup
+            if table is not None:
+                raise InputError("--table applies to single-stage rockets (each stage of a staged rocket "
+                                 "flies its own aerodynamics)", source=path, field="table")
+            return staged_setup(doc, config, **kwargs)
     rf = load_rocket_file(path, config=config)
     if table is not None:
         table = Path(table)

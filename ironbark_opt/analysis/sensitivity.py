@@ -56,6 +56,8 @@ STEPS = {
     "inclination": (math.radians(1.0), "+1 deg launch angle"),
     "heading": (math.radians(1.0), "+1 deg heading"),
     "temperature_offset": (1.0, "+1 K air temperature"),
+    "airbrake_level": (0.1, "+10 % air-brake deployment"),
+    "airbrake_start_time": (1.0, "+1 s later air brakes"),
 }
 
 

@@ -156,9 +156,48 @@ class FlightModel:
         """Coast step boundaries as fractions of the coast (n_coast + 1)."""
         return grid_fractions(self.n_coast, self.coast_grading)
 
+    def _boost_segments(self, n: int) -> list[tuple[float | None, float | None, int]]:
+        """The boost grid split at the motor's ignition/burnout events (air-start),
+        so no thrust jump falls inside a step: [(start, end, steps)] with start/end
+        unscaled event times [s] (None = rail exit / burnout)."""
+        events = tuple(getattr(self.setup.motor, "events", ()))
+        burn = float(self.setup.motor.burn_time)
+        if not events:
+            return [(None, None, n)]
+        bounds = [None, *events, None]
+        lengths = np.diff([0.0, *events, burn])
+        counts = [max(4, int(round(n * length / burn))) for length in lengths]
+        return [(bounds[i], bounds[i + 1], counts[i]) for i in range(len(counts))]
+
+    def _segmented_boost(self, n: int) -> ca.Function:
+        """``(x0, t_rail, t_burnout, p) -> X`` over the segments of :meth:`_boost_segments`
+        (event times scaled by ``burn_time_scale``); same signature as a phase trajectory."""
+        x0, t0, t1 = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("t1")
+        p = ca.MX.sym("p", params.SIZE)
+        s = p[params.index("burn_time_scale")]
+        x, blocks = x0, []
+        for i, (a, b, k) in enumerate(self._boost_segments(n)):
+            traj = phase_trajectory(self.step["boost"], k, f"traj_boost_{i}")
+            X = traj(x, t0 if a is None else a * s, t1 if b is None else b * s, p)
+            blocks.append(X)
+            x = X[:, -1]
+        return ca.Function("traj_boost", [x0, t0, t1, p], [ca.hcat(blocks)], ["x0", "t0", "t1", "p"], ["X"])
+
+    def boost_times(self, t_r: float, t_b: float, p) -> np.ndarray:
+        """Times [s] of the boost trajectory's columns (after each step)."""
+        s = float(np.asarray(p, dtype=float).ravel()[params.index("burn_time_scale")])
+        out = []
+        for a, b, k in self._boost_segments(self.n_boost):
+            lo, hi = (t_r if a is None else a * s), (t_b if b is None else b * s)
+            out.append(lo + (hi - lo) * np.arange(1, k + 1) / k)
+        return np.concatenate(out)
+
     def _set_trajectory(self, phase: str, n: int):
         grading = self.coast_grading if phase == "coast" else 1.0
-        self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
+        if phase == "boost" and getattr(self.setup.motor, "events", ()):
+            self.trajectory[phase] = self._segmented_boost(n)
+        else:
+            self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
         self._run[phase] = self.trajectory[phase]      # compiled (if asked) once the grid is fixed
         for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0].split(":")[0] == phase]:
             del self._map_cache[key]
@@ -372,6 +411,7 @@ class FlightModel:
         p = np.asarray(p, dtype=float).ravel()
         if p.size != params.SIZE:
             raise InputError(f"parameter vector has {p.size} entries, expected {params.SIZE}")
+        _refuse_controller(self.setup)
         x0 = self._x0(p)
         t_r, X_rail = self._rail_exit(p)
         t_b = float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
@@ -408,7 +448,7 @@ class FlightModel:
         h, x_a = float(h), np.array(x_a).ravel()
         t_a = t_k + h
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
-        t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], t_r + (t_b - t_r) * np.arange(1, n_b + 1) / n_b,
+        t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], self.boost_times(t_r, t_b, p),
                             t_b + span * fr[1:k + 1], [t_a]])
         x = np.hstack([x0[:, None], X_rail, X_boost, X_coast[:, :k], x_a[:, None]])
         phase = np.array(["rail"] * (n_r + 1) + ["boost"] * n_b + ["coast"] * (k + 1))
@@ -459,6 +499,7 @@ class FlightModel:
         P = np.asarray(P, dtype=float)
         if P.ndim != 2 or P.shape[0] != params.SIZE:
             raise InputError(f"parameter matrix must be {params.SIZE} x n, got {P.shape}")
+        _refuse_controller(self.setup)
         n = P.shape[1]
         idx = np.arange(n)
         x0, e = (np.array(v) for v in self._mapped("launch", n)(P))
@@ -649,12 +690,15 @@ class FlightModel:
                     t_landing=float(d["t_landing"][0]), x_landing=d["x_landing"][:, 0])
 
     def outputs(self, t, x, phase, p) -> np.ndarray:
-        """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples."""
+        """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples;
+        ``p`` one parameter vector or one column per sample."""
         y = np.zeros((len(rhs_mod.OUTPUT_NAMES), t.size))
-        p_col = np.asarray(p, dtype=float).reshape(-1, 1)
+        p = np.asarray(p, dtype=float)
+        p_col = p.reshape(-1, 1) if p.ndim == 1 else None
         for ph in np.unique(phase):
             idx = np.nonzero(phase == ph)[0]
-            y[:, idx] = np.array(self._outputs_function(ph, idx.size)(x[:, idx], t[idx][None, :], p_col))
+            P = p_col if p_col is not None else p[:, idx]       # one vector, or one per sample
+            y[:, idx] = np.array(self._outputs_function(ph, idx.size)(x[:, idx], t[idx][None, :], P))
         return y
 
     def _outputs_function(self, phase: str, n: int) -> ca.Function:
@@ -674,8 +718,19 @@ class FlightModel:
         return cache[(phase, n)]
 
 
+def _refuse_controller(setup):
+    """A Python air-brake controller flies only through dynamics.controlled."""
+    brakes = getattr(setup, "airbrakes", None)
+    if brakes is not None and not brakes.differentiable:
+        raise InputError("this rocket's air brakes follow a Python controller, which only 'simulate' flies; "
+                         "ballast, sensitivities and Monte Carlo need a schedule (trigger = time, altitude, "
+                         "mach or vertical_speed)", source=setup.source, field="airbrakes.trigger")
+
+
 def _final_state(model: FlightModel, p, T, t_rail_guess: float):
     """Symbolic (MX) state at time ``T`` in the coast, through all phases."""
+    if hasattr(type(model), "final_state_symbolic"):    # staged rockets (dynamics/staged.py)
+        return model.final_state_symbolic(p, T, t_rail_guess)
     P = params.unpack(p)
     t_r = model.rail_exit_root(t_rail_guess, p)
     x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
@@ -702,6 +757,7 @@ def apogee_functions(model: FlightModel, p_nominal) -> dict:
     valid for ``p`` in a neighbourhood of ``p_nominal`` (a dispersion or an
     optimisation, not an arbitrary different rocket).
     """
+    _refuse_controller(model.setup)
     run = model.run(p_nominal)
     t_rail0, t_apogee0 = run["t_rail"], run["t_apogee"]
     p = ca.MX.sym("p", params.SIZE)

@@ -21,6 +21,9 @@ term of the CG moving inside the body (|dx_cg/dt| < 0.1 m/s on a typical
 flight, effect below 0.1 m in apogee) and the thrust produced by the
 exhaust momentum, which the motor's measured thrust curve already contains.
 
+Air brakes (coast only): the drag-coefficient increment of a deployable
+device at its smooth scheduled deployment (:mod:`ironbark_opt.aero.airbrakes`).
+
 Rail phase: 3-DOF motion along the rail (no rotation, aerodynamics at zero
 angle of attack, axial force only); the rocket cannot slide back down
 (acceleration clipped at 0 while thrust < weight component).
@@ -43,7 +46,7 @@ OUTPUT_NAMES = (
     "altitude_asl_m", "speed_mps", "airspeed_mps", "mach", "alpha_rad",
     "dynamic_pressure_Pa", "acceleration_mps2", "mass_kg", "cg_x_m",
     "static_margin_cal", "thrust_N", "axial_force_N", "normal_force_N",
-    "reynolds_per_m", "CA", "CN", "cp_x_m", "vz_l_mps",
+    "reynolds_per_m", "CA", "CN", "cp_x_m", "vz_l_mps", "airbrake_deployment",
 )
 
 _EPS_V = 1e-3      # [m/s] regularises |v| and the cross-flow at zero speed
@@ -136,6 +139,15 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
     alpha = 0 if phase == "rail" else s["alpha"]
     ca_coef, cn_coef, cm_coef = aero.coefficients(s["mach"], alpha, s["re"], power_on=burning)
     ca_coef = ca_coef * P["drag_scale"]
+    brakes = getattr(setup, "airbrakes", None)
+    deployment = 0 * t
+    if brakes is not None and phase == "coast":
+        # Air brakes: their drag-coefficient increment at the scheduled (smooth)
+        # deployment, referred to the rocket's reference area (aero/airbrakes.py).
+        vz_up = (s["t_l"] @ s["v_b"])[2]
+        deployment = brakes.deployment(t, s["h"] - setup.site_elevation, s["mach"], vz_up, P)
+        area_b = brakes.drag.reference_area or aero.reference_area
+        ca_coef = ca_coef + brakes.drag.evaluate(deployment, s["mach"]) * (area_b / aero.reference_area)
     cn_coef = cn_coef * P["normal_force_scale"]
     cm_coef = cm_coef * P["normal_force_scale"]
     qs = s["qbar"] * area
@@ -188,7 +200,7 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
     y = ca.vertcat(
         s["h"], ca.norm_2(v_b), s["airspeed"], s["mach"], alpha, s["qbar"], ca.norm_2(accel_l),
         m, x_cg, (cp_x - x_cg) / dref, thrust, axial, normal, s["re"], ca_coef, cn_coef, cp_x,
-        (s["t_l"] @ v_b)[2],
+        (s["t_l"] @ v_b)[2], deployment,
     )
     # Common-subexpression elimination: the aero pieces share many terms.
     if phase in ("rail", "descent"):

@@ -99,6 +99,9 @@ class FlightSetup:
         Ballast bay, aft of the nose tip (None: not stated).
     source : str or None
         The file the setup was read from.
+    airbrakes : BrakeSchedule or None
+        Deployable drag device (:mod:`ironbark_opt.aero.airbrakes`), acting
+        in the coast.
     """
 
     motor: Any
@@ -116,6 +119,7 @@ class FlightSetup:
     ballast_mass_max: float | None = None
     ballast_x_range: tuple | None = None
     source: str | None = None
+    airbrakes: Any = None
 
     def nominal_parameters(self, **overrides) -> np.ndarray:
         """Parameter vector with the case's nominal values and ``overrides``."""

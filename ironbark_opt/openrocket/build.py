@@ -1,10 +1,11 @@
 """From an :class:`OrkDocument` to a flyable :class:`RocketFile` (numeric-only).
 
-What can be flown today: one axial stage and one motor mount per
-configuration, ignited at launch; a cluster in that mount flies as one
-equivalent motor (:func:`cluster_motor_file`).  Multi-stage separation,
-air-start, motors in several mounts and parallel boosters/pods are
-rejected with an InputError naming the component.
+What can be flown today: one axial stage per configuration; its motor
+mounts ignite at launch or after a delay (air-start, flown as one
+:class:`~ironbark_opt.motors.composite.CompositeMotor`); a cluster in a
+mount flies as one equivalent motor (:func:`cluster_motor_file`).
+Multi-stage separation and parallel boosters/pods are rejected with an
+InputError naming the component.
 """
 from __future__ import annotations
 
@@ -43,16 +44,15 @@ def check_flyable(doc: OrkDocument, config) -> None:
     """InputError naming the first feature of ``config`` we cannot fly yet."""
     _single_stage(doc, "multi-stage separation is", "fly the sustainer alone")
     for mount, entry in config.motors:
-        if entry.ignition_event not in _IGNITE_AT_LAUNCH or entry.ignition_delay > 0.0:
-            raise InputError(f"air-start is not supported yet: motor {entry.designation} in "
-                             f"'{mount.name}' ignites on '{entry.ignition_event}' + "
-                             f"{entry.ignition_delay:g} s (configuration {config.label()})",
-                             source=doc.path, field=mount.path)
-    if len(config.motors) > 1:
-        mount, entry = config.motors[1]
-        raise InputError(f"configuration {config.label()} lights motors in {len(config.motors)} "
-                         f"mounts; one motor mount per flight is supported (motor "
-                         f"{entry.designation} in '{mount.name}')", source=doc.path, field=mount.path)
+        if entry.ignition_event not in _IGNITE_AT_LAUNCH:
+            raise InputError(f"ignition on '{entry.ignition_event}' is not supported in one stage: motor "
+                             f"{entry.designation} in '{mount.name}' (configuration {config.label()}); "
+                             f"give it a delay after launch instead", source=doc.path, field=mount.path)
+    if config.motors and min(e.ignition_delay for _, e in config.motors) > 0.0:
+        mount, entry = min(config.motors, key=lambda me: me[1].ignition_delay)
+        raise InputError(f"no motor ignites at launch in configuration {config.label()} (the first, "
+                         f"{entry.designation} in '{mount.name}', after {entry.ignition_delay:g} s)",
+                         source=doc.path, field=mount.path)
 
 
 def cluster_motor_file(path: Path, motor, count: int) -> tuple[Path, str]:
@@ -149,17 +149,27 @@ def rocket_file(doc: OrkDocument, config: str | None = None):
     from ironbark_opt.rocket.toml_io import RocketFile
     cfg = doc.config(config)
     check_flyable(doc, cfg)
-    mount, entry = cfg.motors[0]
-    found = find_motor_file(entry.designation, entry.manufacturer, doc.path, entry.digest)
-    path, designation = found.path, found.motor.designation
-    if mount.cluster_count > 1:
-        path, designation = cluster_motor_file(path, found.motor, mount.cluster_count)
+    # The motor lit at launch first; others of the stage (air-start) by ignition time.
+    ordered = sorted(cfg.motors, key=lambda me: me[1].ignition_delay)
+    specs = [_motor_spec(doc, mount, entry) for mount, entry in ordered]
+    spec = specs[0]
+    if len(specs) > 1:
+        spec = dataclasses.replace(spec, airstart=tuple(
+            (s, float(e.ignition_delay)) for s, (_, e) in zip(specs[1:], ordered[1:])))
     rocket = geometry(doc)
     sim = doc.simulation_for(cfg)
     launch = sim.launch if sim is not None else LaunchSpec()
     aero = AeroSpec(table=_aero_table_path(rocket, doc))
-    spec = MotorSpec(file=path, designation=designation, nozzle_x=nozzle_x(mount, entry))
     return RocketFile(rocket, spec, aero, launch, recovery(doc, cfg.config_id), BallastSpec(), doc.path)
+
+
+def _motor_spec(doc: OrkDocument, mount, entry) -> MotorSpec:
+    """The MotorSpec of one mount's motor (a cluster flies as one equivalent motor)."""
+    found = find_motor_file(entry.designation, entry.manufacturer, doc.path, entry.digest)
+    path, designation = found.path, found.motor.designation
+    if mount.cluster_count > 1:
+        path, designation = cluster_motor_file(path, found.motor, mount.cluster_count)
+    return MotorSpec(file=path, designation=designation, nozzle_x=nozzle_x(mount, entry))
 
 
 def load_ork_geometry(path) -> Rocket:

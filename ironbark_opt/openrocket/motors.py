@@ -120,7 +120,9 @@ def _common(designation: str) -> str:
 def matches(motor, designation: str, manufacturer: str) -> bool:
     """Does a loaded motor match an .ork designation (full or common name) and maker?"""
     have = getattr(motor, "designation", "") or ""
-    ok = _norm(have) == _norm(designation) or (
+    # A file's designation may carry the delay ('I59WN-P', 'H148R-14'); the .ork gives it apart.
+    bare = re.sub(r"-(P|\d+[A-Z]?)$", "", have.strip(), flags=re.I)
+    ok = _norm(have) == _norm(designation) or _norm(bare) == _norm(designation) or (
         _common(designation) != "" and _common(have) == _common(designation)
         and (_norm(designation) == _common(designation) or _norm(have) == _common(have)))
     if not ok:

@@ -37,12 +37,17 @@ class MotorSpec:
         [kg], propellant_cg [m fwd of nozzle exit], nozzle_exit_area [m^2],
         grains {count, density [kg/m^3], outer_radius, inner_radius, height,
         separation [m]}.
+    airstart : tuple of (MotorSpec, float)
+        Further motors of the same stage and their ignition times [s after
+        launch] (air-start); flown with this one as a
+        :class:`~ironbark_opt.motors.composite.CompositeMotor`.
     """
 
     file: Path
     designation: str | None = None
     nozzle_x: float = 0.0
     overrides: dict = field(default_factory=dict)
+    airstart: tuple = ()
 
     def __post_init__(self):
         object.__setattr__(self, "file", Path(self.file))

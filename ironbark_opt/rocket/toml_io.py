@@ -28,7 +28,7 @@ from ironbark_opt.rocket.specs import (GRAIN_KEYS, MOTOR_OVERRIDE_KEYS, AeroSpec
 #: largest magnitude accepted for any number (guards overflow in the mass sums)
 MAX_MAGNITUDE = 1e9
 
-TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast")
+TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart")
 ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
 _BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass")
@@ -87,6 +87,7 @@ class RocketFile:
     ballast: BallastSpec
     source: Path
     wet_mass_override: MassProperties | None = None
+    airbrakes: object = None          # AirbrakeSpec or None (rocket/airbrake_spec.py)
 
     def dry_rocket(self, motor=None) -> Rocket:
         """The rocket with dry mass properties (numeric-only).
@@ -252,11 +253,25 @@ def loads_rocket_toml(text: str, path) -> RocketFile:
         if val is not None and val > rocket.length():
             raise rd.error(f"{val} m lies aft of the rocket's end ({rocket.length():.6g} m)",
                            "ballast", key)
-    return RocketFile(rocket=rocket, motor=_read_motor(rd, data["motor"]),
+    motor = _read_motor(rd, data["motor"])
+    if "airstart" in data:
+        import dataclasses
+
+        from ironbark_opt.rocket.airbrake_spec import read_airstart
+        motor = dataclasses.replace(motor, airstart=read_airstart(rd, data["airstart"]))
+    return RocketFile(rocket=rocket, motor=motor,
                       aero=_read_aero(rd, data.get("aero", {})),
                       launch=_read_launch(rd, data.get("launch", {})),
                       recovery=_read_recovery(rd, data.get("recovery", [])),
-                      ballast=ballast, source=path, wet_mass_override=wet)
+                      ballast=ballast, source=path, wet_mass_override=wet,
+                      airbrakes=_read_airbrakes(rd, data))
+
+
+def _read_airbrakes(rd: _Reader, data):
+    if "airbrakes" not in data:
+        return None
+    from ironbark_opt.rocket.airbrake_spec import read_airbrakes
+    return read_airbrakes(rd, data["airbrakes"])
 
 
 def _read_rocket(rd: _Reader, data):

@@ -170,10 +170,11 @@ def test_unsupported_features_name_the_component(monkeypatch, tmp_path):
     with pytest.raises(InputError, match="multi-stage.*'Booster'") as err:
         load_ork(DATA / "Two stage high power rocket.ork")
     assert err.value.field == "rocket/subcomponents/stage[2]"
-    with pytest.raises(InputError, match=r"air-start.*I211W.*'38mm airstart'.*\+ 6 s"):
-        load_ork(DATA / "Airstart timing.ork")                # default: airstart @6s
-    with pytest.raises(InputError, match="one motor mount per flight.*I211W"):
-        load_ork(DATA / "Airstart timing.ork", config="99b8d6a6")   # both lit at launch
+    # Air-start flies (tests/validation/test_ork_airstart.py); an ignition nobody lights at launch does not.
+    text = _xml("Airstart timing.ork").replace("<ignitiondelay>0.0</ignitiondelay>", "<ignitiondelay>0.5</ignitiondelay>")
+    assert text != _xml("Airstart timing.ork")
+    with pytest.raises(InputError, match="no motor ignites at launch"):
+        load_ork(_write(tmp_path, text), config="99b8d6a6")
 
 
 def test_missing_motor_names_designation_and_places(monkeypatch, tmp_path):
