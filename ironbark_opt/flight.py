@@ -181,8 +181,7 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
                  separation_altitude_agl_m=float(run["x_separation"][2]), **run.get("booster", {}))
     brakes = getattr(model.setup, "airbrakes", None)
     if brakes is not None:
-        up = df[flying]
-        dep, tt = up["airbrake_deployment"].values, up["time_s"].values
+        dep, tt = df["airbrake_deployment"][flying], df["time_s"][flying]
         rate = np.diff(dep) / np.maximum(np.diff(tt), 1e-12)
         s.update(airbrake_max_deployment=float(dep.max()),
                  airbrake_max_rate_per_s=float(np.abs(rate).max()) if rate.size else 0.0)

@@ -30,8 +30,12 @@ across the gap by :func:`panair.bridge.transonic_bridge`):
      below M_dd (Mason ch. 7; Gur, Mason & Schetz, J. Aircraft 47(6), 2010) —
      :func:`fin_critical_mach`.
 3. **Between M_cr and the first supersonic panel solution** the drag rises
-   monotonically from the subsonic value (zero slope added at M_cr) to the
-   wave drag at Mach 1, and joins the supersonic solutions.  The sonic value
+   by Lock's fourth-power law, dCA = 20 (M - M_cr)^4 on the exposed fin
+   planform (Lock; Mason ch. 7) — through the drag-divergence Mach number
+   M_dd = M_cr + 0.108 and on (it follows measured section drag to about
+   Mach 0.9, e.g. NACA 0012) until it reaches the sonic value or Mach 0.95 —
+   then monotonically to the wave drag at Mach 1, and joins the supersonic
+   solutions.  The sonic value
    is the first supersonic solution's zero-lift pressure drag: by the
    transonic area rule (Whitcomb, NACA Rep. 1273, 1956) and slender-body
    theory (Ward, Q. J. Mech. Appl. Math. 2, 1949) the wave drag of a slender
@@ -57,6 +61,8 @@ KORN_KAPPA = 0.87
 LOCK_OFFSET = (0.1 / 80.0) ** (1.0 / 3.0)
 #: Mach number of the sonic anchor of the fairing [-]
 MACH_SONIC = 1.0
+#: Lock's law is followed at most to this Mach number, then faired to the sonic value [-]
+LOCK_MACH_MAX = 0.95
 #: Largest critical Mach number used (the fairing needs room below Mach 1) [-]
 MACH_CR_MAX = 0.95
 
@@ -120,7 +126,8 @@ def fin_critical_mach(fin) -> float:
     return float(min(m_dd - LOCK_OFFSET, MACH_CR_MAX))
 
 
-def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup):
+def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
+                       lock_area_ratio: float = 1.0):
     """Zero-lift pressure CA P(M) [-] at ``mach_out`` [-] (see module docstring).
 
     Parameters
@@ -135,6 +142,11 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup):
         ``mach_out`` is <= ``mach_cr``.
     p_sup : 1-D array [-]
         Their zero-lift pressure CA.
+    lock_area_ratio : float [-]
+        Area Lock's law is referred to (the exposed fin planform) over the
+        reference area: between M_cr and M_dd = M_cr + :data:`LOCK_OFFSET` the
+        rise is dCA = 20 (M - M_cr)^4 * ratio (Lock; Mason ch. 7), above M_dd
+        the monotone fairing to the sonic value.
 
     Returns
     -------
@@ -149,11 +161,23 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup):
         return out
     if len(mach_sup) == 0:
         raise ValueError("a supersonic solution is needed above the critical Mach number")
-    # anchors: the subsonic curve just below M_cr (its slope), M_cr, Mach 1, supersonic
+    # anchors: the subsonic curve just below M_cr (its slope), M_cr, Lock's law to M_dd,
+    # Mach 1 (sonic value), the supersonic solutions
     m_lo = np.array([max(mach_cr - 0.05, 0.0), mach_cr])
     p_lo = np.asarray(subsonic(m_lo), float)
-    xs = np.concatenate([m_lo, [MACH_SONIC], mach_sup])
-    ys = np.concatenate([p_lo, [p_sup[0]], p_sup])
+    # Lock's law as the shape of the rise, through drag divergence, until it reaches the
+    # sonic value or Mach LOCK_MACH_MAX; then the monotone fairing to Mach 1
+    step = LOCK_OFFSET / 4.0
+    m_lock = mach_cr + step * np.arange(1, int(np.ceil((LOCK_MACH_MAX - mach_cr) / step)) + 1)
+    m_lock = m_lock[m_lock <= LOCK_MACH_MAX + 1e-12]
+    p_lock = np.asarray(subsonic(m_lock), float) + 20.0 * (m_lock - mach_cr) ** 4 * float(lock_area_ratio)
+    p_sonic = float(p_sup[0])
+    below = p_lock < p_sonic
+    below[:min(4, len(below))] = True                 # always through M_dd = M_cr + 0.108
+    m_lock, p_lock = m_lock[below], p_lock[below]
+    p_sonic = max(p_sonic, float(p_lock[-1]) if len(p_lock) else p_sonic)
+    xs = np.concatenate([m_lo, m_lock, [MACH_SONIC], mach_sup])
+    ys = np.concatenate([p_lo, p_lock, [p_sonic], np.maximum(p_sup, 0.0 * p_sup)])
     keep = np.concatenate([[True], np.diff(xs) > 1e-9])
     fair = PchipInterpolator(xs[keep], ys[keep], extrapolate=True)
     sup = m >= mach_sup[0]

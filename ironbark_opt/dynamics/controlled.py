@@ -99,9 +99,8 @@ def run_controlled(model, p, *, descent: bool = False) -> dict:
             vz_k = float(model.vz_l(x)) if k == 0 else vz[k - 1]
             t_k = t + k * h
             h0 = h * vz_k / (vz_k - vz[k]) if vz_k != vz[k] else h
-            hh = float(model.refine_in_step(model._mapped("apex", 1), x_k[:, None], np.array([t_k]),
-                                            np.array([h0]), np.array([h]), p_k[:, None])[0])
-            x_a = np.array(model._mapped("step", 1)(x_k, t_k, hh, p_k)).ravel()
+            hh, x_a = model._apogee_run(x_k, t_k, h0, h, p_k)    # the model's own apogee root
+            hh, x_a = float(hh), np.array(x_a).ravel()
             ts.extend(t + h * np.arange(1, k + 1))
             xs.append(X[:, :k])
             ds.extend([d] * k)

@@ -62,5 +62,9 @@ def test_zero_lift_pressure_is_subsonic_then_monotone_rise_then_supersonic():
     left = (sub(0.8) - sub(0.8 - h)) / h
     right = (zero_lift_pressure([0.8 + h], 0.8, sub, m_sup, p_sup)[0] - sub(0.8)) / h
     assert right == pytest.approx(left, abs=0.02)
+    # Lock's fourth-power law up to M_dd = M_cr + 0.108 (on the given area ratio)
+    m_dd = 0.7 + LOCK_OFFSET
+    p_dd = zero_lift_pressure([m_dd], 0.7, sub, m_sup, p_sup, lock_area_ratio=2.0)[0]
+    assert p_dd == pytest.approx(sub(m_dd) + 20 * LOCK_OFFSET ** 4 * 2.0, rel=1e-9)
     with pytest.raises(ValueError):
         zero_lift_pressure([0.9], 0.8, sub, [], [])
