@@ -7,9 +7,10 @@ from __future__ import annotations
 import click
 
 from ironbark_opt import __version__
+from ironbark_opt.cli_common import OneLineErrorGroup
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=OneLineErrorGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="ironbark")
 def main():
     """Ironbark-Opt: apogee prediction, ballast and motor choice for high-power rockets."""

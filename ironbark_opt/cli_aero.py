@@ -63,8 +63,21 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     from panair.mesh import MeshOptions
     from panair.sweep import build_table
 
+    from ironbark_opt.cli_common import check_output_path
+    from ironbark_opt.errors import InputError
+
     mach_v = _floats(mach, "--mach")
     alpha_v = np.radians(_floats(alpha_deg, "--alpha-deg"))
+    if np.any(alpha_v < 0) or np.any(alpha_v > np.pi / 2):
+        raise InputError("total angles of attack must be within 0..90 deg", field="--alpha-deg")
+    if np.any(mach_v <= 0):
+        raise InputError("Mach numbers must be > 0", field="--mach")
+    if workers < 1:
+        raise InputError(f"must be >= 1, got {workers}", field="--workers")
+    if not refine > 0 or not np.isfinite(refine):
+        raise InputError(f"must be > 0, got {refine}", field="--refine")
+    if out is not None:
+        check_output_path(out, "--out")
     rk, aero_spec = load_rocket_geometry(rocket)
     geom = from_rocket(rk)
     sref = rk.reference_area()
@@ -115,6 +128,9 @@ def plot(table, out, as_json):
     import matplotlib.pyplot as plt
 
     from ironbark_opt.aero.table import AeroTable
+    from ironbark_opt.cli_common import PLOT_SUFFIXES, atomic_write, check_output_path
+    out = Path(out) if out else Path(table).with_suffix(".png")
+    check_output_path(out, "--out", PLOT_SUFFIXES)
     t = AeroTable.load(table)
     for name in ("CA", "CN", "Cm"):
         if not t.has(name):
@@ -143,8 +159,7 @@ def plot(table, out, as_json):
     ax[1, 1].legend(fontsize=7, title="alpha")
     fig.suptitle(f"{Path(table).stem}: includes {', '.join(t.includes)}")
     fig.tight_layout()
-    out = Path(out) if out else Path(table).with_suffix(".png")
-    fig.savefig(out, dpi=120)
+    atomic_write(out, lambda tmp: fig.savefig(tmp, dpi=120))
     emit({"image": str(out)}, as_json, f"wrote {out}")
 
 

@@ -99,6 +99,8 @@ class FlightSetup:
         Ballast bay, aft of the nose tip (None: not stated).
     source : str or None
         The file the setup was read from.
+    body_length : float or None [m]
+        Nose tip to the aft end of the body (for plausibility checks).
     """
 
     motor: Any
@@ -116,6 +118,7 @@ class FlightSetup:
     ballast_mass_max: float | None = None
     ballast_x_range: tuple | None = None
     source: str | None = None
+    body_length: float | None = None
 
     def nominal_parameters(self, **overrides) -> np.ndarray:
         """Parameter vector with the case's nominal values and ``overrides``."""

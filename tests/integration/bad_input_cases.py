@@ -153,7 +153,7 @@ case("toml-ballast-over-capacity", sim_k, ["kestrel.toml", "mass"],
      edits=[edit(KT, "mass_max = 3.0", "mass_max = 3.0\nmass = 4.0")])
 case("toml-ballast-outside-bay", sim_k, ["kestrel.toml", "x"],
      edits=[edit(KT, "mass_max = 3.0", "mass_max = 3.0\nmass = 1.0\nx = 1.5")])
-case("toml-ballast-bay-outside-body", sim_k, ["x_max", "body"],
+case("toml-ballast-bay-outside-body", sim_k, ["ballast", "aft of the rocket"],
      edits=[edit(KT, "x_min = 0.46", "x_min = 3.46"), edit(KT, "x_max = 0.58", "x_max = 3.58")])
 case("toml-component-negative-mass", sim_k, ["kestrel.toml", "mass"],
      edits=[edit(KT, "mass = 0.95", "mass = -0.95")])
@@ -176,19 +176,19 @@ case("phys-axial-gt-twice-transverse", sim_c, ["i_axial", "triangle"],
             edit(CT, "I_transverse = 6.321", "I_transverse = 25.0")])
 case("phys-zero-transverse-inertia", sim_c, ["i_transverse"],
      edits=[edit(CT, "I_transverse = 6.321", "I_transverse = 0.0")])
-case("phys-negative-axial-inertia", sim_c, ["i_axial"],
+case("phys-negative-axial-inertia", sim_c, ["inertia", ">= 0"],
      edits=[edit(CT, "I_axial = 0.034", "I_axial = -0.034")])
 case("phys-tensor-not-positive-definite", sim_c, ["inertia", "positive definite"],
-     edits=[edit(CT, "I_transverse = 6.321\nI_axial = 0.034",
+     edits=[edit(CT, "I_axial = 0.034", "# I_axial = 0.034"), edit(CT, "I_transverse = 6.321",
                  "inertia = [[0.034, 9.0, 0.0], [9.0, 6.321, 0.0], [0.0, 0.0, 6.321]]")])
 case("phys-tensor-asymmetric", sim_c, ["inertia", "symmetric"],
-     edits=[edit(CT, "I_transverse = 6.321\nI_axial = 0.034",
+     edits=[edit(CT, "I_axial = 0.034", "# I_axial = 0.034"), edit(CT, "I_transverse = 6.321",
                  "inertia = [[0.034, 0.1, 0.0], [0.0, 6.321, 0.0], [0.0, 0.0, 6.321]]")])
-case("phys-tensor-triangle", sim_c, ["inertia", "triangle"],
-     edits=[edit(CT, "I_transverse = 6.321\nI_axial = 0.034",
+case("phys-tensor-triangle", sim_c, ["i_axial", "triangle"],
+     edits=[edit(CT, "I_axial = 0.034", "# I_axial = 0.034"), edit(CT, "I_transverse = 6.321",
                  "inertia = [[20.0, 0.0, 0.0], [0.0, 6.321, 0.0], [0.0, 0.0, 6.321]]")])
 case("phys-tensor-wrong-shape", sim_c, ["inertia", "3x3"],
-     edits=[edit(CT, "I_transverse = 6.321\nI_axial = 0.034",
+     edits=[edit(CT, "I_axial = 0.034", "# I_axial = 0.034"), edit(CT, "I_transverse = 6.321",
                  "inertia = [[0.034, 0.0], [0.0, 6.321]]")])
 case("phys-motor-dry-inertia-triangle", sim_c, ["dry_inertia", "triangle"],
      edits=[edit(CT, "dry_inertia = [0.125, 0.002]", "dry_inertia = [0.125, 0.9]")])
@@ -205,7 +205,7 @@ case("phys-nozzle-outside-body", sim_c, ["nozzle_x", "body"],
 case("phys-unstable-cg-aft", sim_c, ["static margin", "--allow-unstable"],
      edits=[edit(CT, "cg_x = 1.278", "cg_x = 2.40")])
 case("phys-unstable-no-fins", sim_k, ["static margin", "--allow-unstable"],
-     edits=[edit(KT, "x = 1.05", "x = 2.35"), edit(KT, "mass = 0.95", "mass = 9.0")])
+     edits=[edit(KT, "x = 1.05", "x = 2.35"), edit(KT, "mass = 0.95", "mass = 30.0")])
 case("phys-motor-too-weak", sim_c, ["thrust", "weight"],
      edits=[edit(CT, "mass = 14.426", "mass = 250.0"),
             edit(CT, "I_transverse = 6.321", "I_transverse = 110.0")])
@@ -278,7 +278,7 @@ case("table-json-missing", sim_k, ["kestrel"], edits=[lambda tmp: (tmp / "tables
 case("table-json-garbage", sim_k, ["kestrel.json"], edits=[write("tables/Kestrel.json", "{not json")])
 case("table-json-wrong-format", sim_k, ["kestrel.json", "format"],
      edits=[edit("tables/Kestrel.json", '"format": "ironbark-aerotable"', '"format": "other"')])
-case("table-json-negative-area", sim_k, ["kestrel.json", "reference_area"],
+case("table-json-negative-area", sim_k, ["kestrel", "reference_area"],
      edits=[edit("tables/Kestrel.json", '"reference_area_m2": 0.0081', '"reference_area_m2": -0.0081')])
 case("table-csv-empty", sim_k, ["kestrel.csv"], edits=[write("tables/Kestrel.csv", "")])
 case("table-csv-text-value", sim_k, ["kestrel.csv"],
@@ -289,8 +289,6 @@ case("table-csv-missing-column", sim_k, ["kestrel.csv", "cm"],
      edits=[lambda tmp: _drop_column(tmp / "tables/Kestrel.csv", "Cm")])
 case("table-csv-missing-row", sim_k, ["kestrel.csv"],
      edits=[lambda tmp: _drop_line(tmp / "tables/Kestrel.csv", 5)])
-case("table-csv-negative-ca", sim_k, ["kestrel.csv", "ca"],
-     edits=[lambda tmp: _replace_field(tmp / "tables/Kestrel.csv", 2, 2, "-5.0")])
 
 # --------------------------------------------------------------------------- .ork files
 ORK1 = "{ORK:01.One-stage_OR22.02.ork}"
@@ -316,8 +314,8 @@ case("ork-bad-version", "simulate {T}/ork/bad.ork", ["bad.ork", "version"],
      edits=[lambda tmp: _zip(tmp / "ork/bad.ork", {"rocket.ork": b'<openrocket version="0.1"/>'})])
 case("ork-config-unknown", f"simulate {ORK1} --config [Z9999]", ["config", "z9999"])
 case("ork-config-on-toml", "simulate {C} --config M1670", ["config", "openrocket"])
-case("ork-two-stage", "simulate {ORK:Two stage high power rocket.ork}", ["stage"])
-case("ork-motor-missing", "simulate {ORK:A simple model rocket.ork}", ["motor"])
+case("ork-two-stage", ["simulate", "{ORK:Two stage high power rocket.ork}"], ["stage"])
+case("ork-motor-missing", ["simulate", "{ORK:A simple model rocket.ork}"], ["motor"])
 
 # --------------------------------------------------------------------------- CLI options
 case("opt-inclination-120", sim_c + " --inclination 120", ["--inclination", "90"])
@@ -375,7 +373,7 @@ case("ballast-unstable", ball_c, ["static margin", "--allow-unstable"],
      edits=[edit(CT, "cg_x = 1.278", "cg_x = 2.40")])
 case("ballast-toml-broken", ball_c, ["calisto.toml:", "syntax"],
      edits=[edit(CT, 'name = "Calisto"', 'name = "Calisto')])
-MC = "montecarlo {C} --spec {CD}/dispersions.toml"
+MC = "montecarlo {C} --spec {CD}/dispersions.toml --no-progress"
 case("mc-samples-huge", MC + " --samples 1000000000000", ["--samples"])
 case("mc-samples-zero", MC + " --samples 0", ["--samples"])
 case("mc-samples-negative", MC + " --samples -5", ["--samples"])
@@ -399,14 +397,13 @@ case("aero-build-alpha-negative", "aero build {C} --alpha-deg -5,0 --out {T}/t",
 case("aero-build-workers-zero", "aero build {C} --workers 0 --out {T}/t", ["--workers"])
 case("aero-build-refine-negative", "aero build {C} --refine -1 --out {T}/t", ["--refine"])
 case("aero-plot-missing-table", "aero plot {T}/none.csv --out {T}/p.png", ["none", "not found"], outputs=["p.png"])
-case("motor-show-missing", "motor show {T}/nope.eng", ["nope.eng", "not found"])
-case("motor-show-broken", "motor show {CD}/Cesaroni_M1670.eng", ["cesaroni_m1670.eng"],
-     edits=[write(CE, "garbage\n")])
+case("motor-get-offline-format", "motor get K550W --format XYZ --offline", ["--format"])
+case("motor-get-dir-is-file", "motor get K550W --offline -o {C}", ["-o"])
 case("motor-search-max-results-zero", "motor search --designation K550W --max-results 0 --offline", ["--max-results"])
 case("motor-search-diameter-negative", "motor search --diameter-mm -5 --offline", ["--diameter-mm"])
-case("ork-info-missing", "ork {T}/none.ork", ["none.ork", "not found"])
-case("weather-lat-out", "weather profile --model sounding --lat 95 --lon 0 --offline", ["lat"])
-case("weather-file-missing", "weather profile --model sounding --file {T}/none.txt", ["none.txt"])
+case("ork-info-missing", "ork info {T}/none.ork", ["none.ork", "no such file"])
+case("weather-lat-out", "weather get --model sounding --lat 95 --lon 0 --offline", ["lat"])
+case("weather-file-missing", "weather get --model sounding --file {T}/none.txt", ["none.txt"])
 
 # --------------------------------------------------------------------------- output paths
 case("out-plot-missing-folder", sim_c + " --plot {T}/nofolder/x.png", ["--plot", "nofolder"],
@@ -435,20 +432,20 @@ case("out-aero-build-under-file", "aero build {C} --out {C}/sub/t", ["--out"])
 case("out-aero-build-missing-folder", "aero build {C} --out {T}/no/where/t", ["--out"])
 case("out-aero-plot-ext", "aero plot {T}/tables/Kestrel.csv --out {T}/p.xyz", ["--out"], outputs=["p.xyz"])
 case("out-aero-plot-under-file", "aero plot {T}/tables/Kestrel.csv --out {C}/p.png", ["--out"])
-case("out-motor-download-dir-is-file", "motor download K550W --offline -o {C}", ["--output-dir"])
-case("out-weather-csv-missing", "weather profile --model sounding --file {T}/x.txt --csv {T}/no/x.csv",
+case("out-motor-download-dir-is-file", "motor get K550W --offline -o {CD}/calisto.toml/x", ["output-dir"])
+case("out-weather-csv-missing", "weather get --model sounding --file {T}/x.txt --csv {T}/no/x.csv",
      ["--csv"], edits=[write("x.txt", "x")])
 
 # --------------------------------------------------------------------------- network faults (exit 3)
 case("net-search-closed-port", "motor search --designation K550W", ["thrustcurve", "cache"], status=3, net="closed")
-case("net-download-closed-port", "motor download K550W -o {T}", ["thrustcurve", "cache"], status=3, net="closed")
+case("net-download-closed-port", "motor get K550W -o {T}", ["thrustcurve", "cache"], status=3, net="closed")
 case("net-search-500", "motor search --designation K550W", ["thrustcurve", "500"], status=3,
      net="loopback:500")
 case("net-search-garbage", "motor search --designation K550W", ["thrustcurve"], status=3,
      net="loopback:garbage")
 case("net-search-truncated", "motor search --designation K550W", ["thrustcurve"], status=3,
      net="loopback:truncate")
-case("net-offline-not-cached", "motor download K550W --offline -o {T}", ["cache", "offline"], status=3,
+case("net-offline-not-cached", "motor get K550W --offline -o {T}", ["cache", "offline"], status=3,
      net="closed")
 case("net-ballast-name-closed-port", ball_c + " --motor K550W", ["k550w"], status=3, net="closed")
 case("net-forecast-closed-port", ball_c + " --forecast rap --site spaceport --time 2025-06-20T15:00Z",
