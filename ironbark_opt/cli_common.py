@@ -67,7 +67,9 @@ def handle_errors(func):
         except IronbarkError as err:
             # one short line: a failure with several sources tried keeps the first and a count
             lines = [ln.strip() for ln in str(err).splitlines() if ln.strip()]
-            more = f" (and {len(lines) - 1} more sources failed the same way)" if len(lines) > 1 else ""
+            if len(lines) > 1 and lines[0].endswith(":"):      # a heading, then one line per source
+                lines = [f"{lines[0]} {lines[1]}"] + lines[2:]
+            more = f" (and {len(lines) - 1} more sources failed)" if len(lines) > 1 else ""
             click.echo(f"error: {lines[0] if lines else type(err).__name__}{more}", err=True)
             sys.exit(3)
         except (FileNotFoundError, IsADirectoryError, PermissionError) as err:

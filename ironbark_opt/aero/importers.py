@@ -210,7 +210,9 @@ def _read_cd_curves(path, names, duplicates, want_power_on):
     if data.shape[0] < 2:
         raise InputError(f"a drag curve needs at least 2 rows (Mach, Cd), found {data.shape[0]}",
                          source=path, line=lines[0] if lines else None, field="mach")
-    back = np.flatnonzero(np.diff(data[:, im]) < 0)
+    # a plain (mach, cd) table is typed in Mach order: a step back is a typo.  Files with a
+    # header may be exported time series (OpenRocket: Mach rises and falls) and are sorted.
+    back = np.flatnonzero(np.diff(data[:, im]) < 0) if header is None else np.array([], int)
     if back.size:
         i = int(back[0]) + 1
         raise InputError(f"Mach must increase down the file: {data[i, im]:g} follows {data[i - 1, im]:g}",

@@ -285,7 +285,7 @@ case("table-csv-text-value", sim_k, ["kestrel.csv"],
      edits=[lambda tmp: _replace_field(tmp / "tables/Kestrel.csv", 2, 2, "abc")])
 case("table-csv-nan", sim_k, ["kestrel.csv"],
      edits=[lambda tmp: _replace_field(tmp / "tables/Kestrel.csv", 2, 4, "nan")])
-case("table-csv-missing-column", sim_k, ["kestrel.csv", "cm"],
+case("table-csv-missing-column", sim_k, ["kestrel", "coefficients"],
      edits=[lambda tmp: _drop_column(tmp / "tables/Kestrel.csv", "Cm")])
 case("table-csv-missing-row", sim_k, ["kestrel.csv"],
      edits=[lambda tmp: _drop_line(tmp / "tables/Kestrel.csv", 5)])
@@ -402,7 +402,7 @@ case("motor-get-dir-is-file", "motor get K550W --offline -o {C}", ["-o"])
 case("motor-search-max-results-zero", "motor search --designation K550W --max-results 0 --offline", ["--max-results"])
 case("motor-search-diameter-negative", "motor search --diameter-mm -5 --offline", ["--diameter-mm"])
 case("ork-info-missing", "ork info {T}/none.ork", ["none.ork", "no such file"])
-case("weather-lat-out", "weather get --model sounding --lat 95 --lon 0 --offline", ["lat"])
+case("weather-lat-out", "weather get --model rap --lat 95 --lon 0 --time 2025-06-20T15:00Z --offline", ["lat"])
 case("weather-file-missing", "weather get --model sounding --file {T}/none.txt", ["none.txt"])
 
 # --------------------------------------------------------------------------- output paths
