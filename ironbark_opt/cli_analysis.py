@@ -21,13 +21,14 @@ def _common(func):
         table_option,
         click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg] (nominal point)."),
         click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m]."),
+        click.option("--allow-unstable", is_flag=True, help="Accept a static margin below zero at launch."),
     ]
     for option in reversed(options):
         func = option(func)
     return func
 
 
-def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None):
+def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None, allow_unstable=False):
     from ironbark_opt.vehicle import load_setup
 
     kwargs = {"rail_exit": rail_exit, "table": table}
@@ -37,7 +38,7 @@ def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None):
     from ironbark_opt.plausibility import check_flight_inputs, option_overrides
     overrides = option_overrides(setup, ballast_kg=ballast_kg, ballast_x_m=ballast_x_m,
                                  body_length=setup.body_length)["parameters"]
-    check_flight_inputs(setup, {**setup.nominal, **overrides})
+    check_flight_inputs(setup, {**setup.nominal, **overrides}, allow_unstable=allow_unstable)
     return setup, overrides
 
 
@@ -57,14 +58,14 @@ def _agg():
 @click.option("--plot", "plot_path", type=_FILE_OUT, help="Write a tornado chart of the apogee changes.")
 @json_option
 @handle_errors
-def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m, csv_path,
-                        plot_path, as_json):
+def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m,
+                        allow_unstable, csv_path, plot_path, as_json):
     """Exact (AD) sensitivities of apogee, apogee time and speeds for ROCKET."""
     from ironbark_opt.analysis.sensitivity import sensitivities
 
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable)
     if target is not None and "ballast_mass" in overrides:
         from ironbark_opt.errors import InputError
         raise InputError("--ballast and --target exclude each other: the target decides the ballast",
@@ -103,7 +104,7 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @json_option
 @handle_errors
 def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, table,
-                       ballast_kg, ballast_x_m, chunk, jit, executor, results_dir, progress, csv_path, hist_path,
+                       ballast_kg, ballast_x_m, allow_unstable, chunk, jit, executor, results_dir, progress, csv_path, hist_path,
                        ellipse_path, as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
@@ -116,7 +117,7 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     check_output_path(results_dir, "--results-dir", directory=True)
     if band_m is not None and not (band_m > 0 and band_m < float("inf")):
         raise InputError(f"must be > 0 m, got {band_m}", field="--band")
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable)
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit=jit, executor=executor, output=results_dir)

@@ -101,7 +101,8 @@ class FlightModel:
         x_b = np.array(self._run["boost"](x_r, t_r, t_b, p))[:, -1]
         vz_b = float(self.vz_l(x_b))
         if vz_b <= 0:
-            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs")
+            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs; check the "
+                              "launch mass, the motor, launch.inclination_deg and the wind")
         self._ensure_stable(x_b, t_b, t_b + vz_b / G0 + 2.0, p)
 
     def discretisation(self) -> tuple[int, int, float]:
@@ -327,7 +328,8 @@ class FlightModel:
         x_b = X_boost[:, -1]
         vz_b = float(self.vz_l(x_b))
         if vz_b <= 0:
-            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs")
+            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs; check the "
+                              "launch mass, the motor, launch.inclination_deg and the wind")
         # Drag only shortens the coast below the vacuum time v_z / g; the margin
         # covers gravity falling off with height.
         t_end = t_b + vz_b / G0 + 2.0
