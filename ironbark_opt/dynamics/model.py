@@ -564,8 +564,8 @@ class FlightModel:
             x_cur = np.array(step.map(n)(x_k, t_k[None, :], h[None, :], P))
             t_cur = t_k + h
             if keep_samples:
-                xs.append(x_cur[:, :1])
-                ts.append(t_cur[:1])
+                xs.append(x_cur[:, :1].copy())    # copies: the next stage updates x_cur/t_cur in place
+                ts.append(t_cur[:1].copy())
                 labels.append(label)
         out = {"t_landing": t_cur, "x_landing": x_cur}
         if keep_samples:

@@ -83,3 +83,22 @@ def test_preflight_margin_matches_the_flight_model():
           f"cal, |diff| {err:.4f} cal (tolerance 0.05: Mach 0.1 vs ~0)")
     assert err < 0.05
     assert flown["static_margin_min_cal"] <= flown["static_margin_rail_exit_cal"] + 1e-12
+
+
+def test_descent_table_and_no_recovery_note():
+    """Two-stage descent (Kestrel: drogue, then main at 300 m): the time series is in
+    time order (the stage-crossing rows were views overwritten by the next stage);
+    a file without recovery says so (Calisto: ballistic)."""
+    from ironbark_opt.flight import simulate
+    from ironbark_opt.vehicle import load_setup
+
+    k = simulate(load_setup(ROOT / "examples/kestrel/kestrel.toml"), descent=True)
+    t = k.to_dataframe()["time_s"].to_numpy()
+    back = int(np.sum(np.diff(t) < 0))
+    print(f"Kestrel descent: {t.size} rows, {back} out of time order, landing {k.summary_values['landing_time_s']:.1f} s")
+    assert back == 0
+    assert k.summary_values["recovery_devices"] == 2 and "no recovery device" not in k.summary()
+    c = simulate(load_setup(ROOT / "examples/calisto/calisto.toml"), descent=True)
+    assert c.summary_values["recovery_devices"] == 0
+    assert "no recovery device" in c.summary()
+    print(c.summary().splitlines()[-1])
