@@ -102,3 +102,26 @@ def test_descent_table_and_no_recovery_note():
     assert c.summary_values["recovery_devices"] == 0
     assert "no recovery device" in c.summary()
     print(c.summary().splitlines()[-1])
+
+
+def test_unstable_rocket_flies_only_with_the_flag(tmp_path):
+    """CG moved to 2.40 m (CP about 1.7 m): refused (exit 2) without --allow-unstable;
+    with it the flight runs and the JSON carries the minimum static margin (< 0)."""
+    import json
+    import shutil
+
+    from click.testing import CliRunner
+
+    from ironbark_opt.cli import main
+
+    shutil.copytree(ROOT / "examples/calisto", tmp_path / "c")
+    toml = tmp_path / "c/calisto.toml"
+    toml.write_text(toml.read_text().replace("cg_x = 1.278", "cg_x = 2.40"))
+    refused = CliRunner().invoke(main, ["simulate", str(toml), "--json"])
+    assert refused.exit_code == 2 and "--allow-unstable" in refused.stderr and not refused.stdout
+    flown = CliRunner().invoke(main, ["simulate", str(toml), "--json", "--allow-unstable"])
+    assert flown.exit_code == 0, flown.stderr
+    data = json.loads(flown.stdout)
+    print(f"unstable Calisto: min margin {data['static_margin_min_cal']:.2f} cal at "
+          f"{data['static_margin_min_time_s']:.2f} s; stderr: {flown.stderr.strip()}")
+    assert data["static_margin_min_cal"] < 0 and "static margin" in flown.stderr
