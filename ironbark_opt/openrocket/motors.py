@@ -248,8 +248,8 @@ def find_motor_file(designation: str, manufacturer: str, ork_path,
     if hit is not None:
         return hit
     where = ", ".join(str(d) for d in dirs)
-    why = str(why).split(": connection failed")[0] + (": no network" if ": connection failed" in str(why) else "")
+    why = str(why).split(": connection failed")[0][:120] + (": no network" if ": connection failed" in str(why) else "")
     raise InputError(f"motor {manufacturer + ' ' if manufacturer else ''}{designation} not found: "
-                     f"searched motor files (.eng/.rse) in {where}; {why[:120]}. Put its .eng/.rse file "
+                     f"searched motor files (.eng/.rse) in {where}; {why}. Put its .eng/.rse file "
                      f"next to the .ork or in a directory listed in IRONBARK_MOTOR_PATH",
                      source=ork_path, field="motor")
