@@ -14,6 +14,7 @@ import importlib
 import click
 
 from ironbark_opt import __version__
+from ironbark_opt.cli_common import OneLineErrorGroup
 
 #: every module that contributes commands (its ``COMMANDS`` list)
 _MODULES = ("cli_simulate", "cli_optimise", "cli_analysis", "cli_ork", "cli_motor", "cli_weather", "cli_aero",
@@ -25,8 +26,9 @@ _HOME = {"simulate": "cli_simulate", "ballast": "cli_optimise", "sensitivity": "
          "aero": "cli_aero", "flight": "cli_flight", "calibrate": "cli_flight"}
 
 
-class LazyGroup(click.Group):
-    """A click group that imports a sub-command's module on first use."""
+class LazyGroup(OneLineErrorGroup):
+    """A click group that imports a sub-command's module on first use (and reports
+    usage errors in one line, :class:`~ironbark_opt.cli_common.OneLineErrorGroup`)."""
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)

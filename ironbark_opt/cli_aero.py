@@ -64,11 +64,23 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     from ironbark_opt.vehicle import load_rocket_geometry
     from panair.rocket_table import default_mach_grid, rocket_table
 
+    from ironbark_opt.cli_common import check_output_path
+
     mach_v = default_mach_grid() if mach is None else _floats(mach, "--mach")
     alpha_v = _floats(alpha_deg, "--alpha-deg")
     if alpha_v[0] != 0.0:
         raise InputError("the first angle must be 0 (the zero-lift drag is read there)",
                          field="--alpha-deg")
+    if np.any(alpha_v > 90.0):
+        raise InputError("total angles of attack must be within 0..90 deg", field="--alpha-deg")
+    if np.any(mach_v <= 0):
+        raise InputError("Mach numbers must be > 0", field="--mach")
+    if workers < 1:
+        raise InputError(f"must be >= 1, got {workers}", field="--workers")
+    if not refine > 0 or not np.isfinite(refine):
+        raise InputError(f"must be > 0, got {refine}", field="--refine")
+    if out is not None:
+        check_output_path(out, "--out")
     rk, aero_spec = load_rocket_geometry(rocket)
     sref = rk.reference_area()
     lref = 2.0 * rk.reference_radius()
@@ -115,6 +127,9 @@ def plot(table, out, as_json):
     import matplotlib.pyplot as plt
 
     from ironbark_opt.aero.table import AeroTable
+    from ironbark_opt.cli_common import PLOT_SUFFIXES, atomic_write, check_output_path
+    out = Path(out) if out else Path(table).with_suffix(".png")
+    check_output_path(out, "--out", PLOT_SUFFIXES)
     t = AeroTable.load(table)
     for name in ("CA", "CN", "Cm"):
         if not t.has(name):
@@ -143,8 +158,7 @@ def plot(table, out, as_json):
     ax[1, 1].legend(fontsize=7, title="alpha")
     fig.suptitle(f"{Path(table).stem}: includes {', '.join(t.includes)}")
     fig.tight_layout()
-    out = Path(out) if out else Path(table).with_suffix(".png")
-    fig.savefig(out, dpi=120)
+    atomic_write(out, lambda tmp: fig.savefig(tmp, dpi=120))
     emit({"image": str(out)}, as_json, f"wrote {out}")
 
 

@@ -3,10 +3,13 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
+                                     json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 _FILE_OUT = click.Path(dir_okay=False, writable=True)
+#: Most Monte Carlo flights per run (~120 bytes each per output column set; split bigger studies by --seed).
+MAX_SAMPLES = 1_000_000
 
 
 def _common(func):
@@ -18,21 +21,24 @@ def _common(func):
         table_option,
         click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg] (nominal point)."),
         click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m]."),
+        click.option("--allow-unstable", is_flag=True, help="Accept a static margin below zero at launch."),
     ]
     for option in reversed(options):
         func = option(func)
     return func
 
 
-def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None):
+def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None, allow_unstable=False):
     from ironbark_opt.vehicle import load_setup
 
     kwargs = {"rail_exit": rail_exit, "table": table}
     if config is not None:
         kwargs["config"] = config
     setup = load_setup(rocket, **kwargs)
-    overrides = {name: value for name, value in (("ballast_mass", ballast_kg), ("ballast_x", ballast_x_m))
-                 if value is not None}
+    from ironbark_opt.plausibility import check_flight_inputs, option_overrides
+    overrides = option_overrides(setup, ballast_kg=ballast_kg, ballast_x_m=ballast_x_m,
+                                 body_length=setup.body_length)["parameters"]
+    check_flight_inputs(setup, {**setup.nominal, **overrides}, allow_unstable=allow_unstable)
     return setup, overrides
 
 
@@ -52,23 +58,25 @@ def _agg():
 @click.option("--plot", "plot_path", type=_FILE_OUT, help="Write a tornado chart of the apogee changes.")
 @json_option
 @handle_errors
-def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m, csv_path,
-                        plot_path, as_json):
+def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m,
+                        allow_unstable, csv_path, plot_path, as_json):
     """Exact (AD) sensitivities of apogee, apogee time and speeds for ROCKET."""
     from ironbark_opt.analysis.sensitivity import sensitivities
 
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
+    check_output_path(csv_path, "--csv", (".csv", ".txt"))
+    check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable)
     if target is not None and "ballast_mass" in overrides:
         from ironbark_opt.errors import InputError
         raise InputError("--ballast and --target exclude each other: the target decides the ballast",
                          field="ballast")
     sens = sensitivities(setup, parameters=overrides, names=list(names) or None, target=target)
     if csv_path:
-        sens.to_dataframe().to_csv(csv_path, index=False)
+        atomic_write(csv_path, lambda tmp: sens.to_dataframe().to_csv(tmp, index=False))
     if plot_path:
         _agg()
         from ironbark_opt.analysis.plots import plot_sensitivities
-        plot_sensitivities(sens, filename=plot_path)
+        atomic_write(plot_path, lambda tmp: plot_sensitivities(sens, filename=tmp))
     emit(sens.to_dict(), as_json, sens.summary())
 
 
@@ -76,7 +84,7 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @click.argument("rocket", type=click.Path(dir_okay=False))
 @click.option("--spec", "spec_path", type=click.Path(dir_okay=False), required=True,
               help="Dispersion spec (TOML: seed, [parameters.NAME] distribution = normal|uniform|file).")
-@click.option("--samples", type=click.IntRange(min=1), default=1000, show_default=True, help="Number of flights.")
+@click.option("--samples", type=click.IntRange(min=1, max=MAX_SAMPLES), default=1000, show_default=True, help="Number of flights.")
 @click.option("--seed", type=click.IntRange(min=0), help="Random seed (overrides the spec's).")
 @click.option("--descent/--no-descent", default=False, help="Fly every sample to landing (landing ellipse).")
 @click.option("--target", type=str, help="Apogee target (e.g. 30000ft, 3000m) for the success probability.")
@@ -99,27 +107,35 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @json_option
 @handle_errors
 def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, table,
-                       ballast_kg, ballast_x_m, chunk, jit, executor, results_dir, progress, csv_path, hist_path,
-                       ellipse_path, calibration_path, as_json):
+                       ballast_kg, ballast_x_m, allow_unstable, chunk, jit, executor, results_dir, progress,
+                       csv_path, hist_path, ellipse_path, calibration_path, as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
     from ironbark_opt.analysis.montecarlo import montecarlo
+    from ironbark_opt.errors import InputError
 
-    from ironbark_opt.telemetry.calibration_file import apply_calibration
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
-    setup = apply_calibration(setup, calibration_path)
+    check_output_path(csv_path, "--csv", (".csv", ".txt"))
+    check_output_path(hist_path, "--histogram", PLOT_SUFFIXES)
+    check_output_path(ellipse_path, "--ellipse", PLOT_SUFFIXES)
+    check_output_path(results_dir, "--results-dir", directory=True)
+    if band_m is not None and not (band_m > 0 and band_m < float("inf")):
+        raise InputError(f"must be > 0 m, got {band_m}", field="--band")
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable)
+    if calibration_path is not None:
+        from ironbark_opt.telemetry.calibration_file import apply_calibration
+        setup = apply_calibration(setup, calibration_path)
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit="auto" if jit is None else jit, executor=executor, output=results_dir)
     if csv_path:
-        disp.to_dataframe().to_csv(csv_path, index=False)
+        atomic_write(csv_path, lambda tmp: disp.to_dataframe().to_csv(tmp, index=False))
     if hist_path or ellipse_path:
         _agg()
         from ironbark_opt.analysis.plots import plot_apogee_histogram, plot_landing_ellipse
         if hist_path:
-            plot_apogee_histogram(disp, filename=hist_path)
+            atomic_write(hist_path, lambda tmp: plot_apogee_histogram(disp, filename=tmp))
         if ellipse_path:
-            plot_landing_ellipse(disp, filename=ellipse_path)
+            atomic_write(ellipse_path, lambda tmp: plot_landing_ellipse(disp, filename=tmp))
     emit(disp.to_dict(), as_json, disp.summary())
 
 

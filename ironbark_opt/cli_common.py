@@ -65,9 +65,95 @@ def handle_errors(func):
             click.echo(f"error: {err}", err=True)
             sys.exit(2)
         except IronbarkError as err:
-            click.echo(f"error: {err}", err=True)
+            # one short line: a failure with several sources tried keeps the first and a count
+            lines = [ln.strip() for ln in str(err).splitlines() if ln.strip()]
+            if len(lines) > 1 and lines[0].endswith(":"):      # a heading, then one line per source
+                lines = [f"{lines[0]} {lines[1]}"] + lines[2:]
+            more = f" (and {len(lines) - 1} more sources failed)" if len(lines) > 1 else ""
+            click.echo(f"error: {lines[0] if lines else type(err).__name__}{more}", err=True)
             sys.exit(3)
         except (FileNotFoundError, IsADirectoryError, PermissionError) as err:
             click.echo(f"error: {err.filename}: {err.strerror}", err=True)
             sys.exit(2)
     return wrapper
+
+
+class OneLineErrorGroup(click.Group):
+    """A click group whose usage errors (bad option value, missing option,
+    unknown option) are one ``error:`` line naming the option, exit status 2,
+    like every other bad input."""
+
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode, **extra)
+        try:
+            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        except click.UsageError as err:
+            cmd = err.ctx.command_path if err.ctx is not None else "ironbark"
+            click.echo(f"error: {err.format_message()} (see '{cmd} --help')", err=True)
+            sys.exit(2)
+        except click.ClickException as err:
+            click.echo(f"error: {err.format_message()}", err=True)
+            sys.exit(err.exit_code)
+        except click.Abort:
+            click.echo("error: aborted", err=True)
+            sys.exit(1)
+        sys.exit(rv if isinstance(rv, int) else 0)
+
+
+def check_output_path(path, option: str, suffixes: tuple | None = None, *, directory: bool = False):
+    """Refuse an output path before any work starts (numeric-free, no side effects).
+
+    The parent folder must exist and be a writable folder; the target must
+    not be a directory (or, with ``directory``, must be one or not exist) nor
+    a device; ``suffixes`` (e.g. ``(".png", ".pdf", ".svg")``) lists the
+    accepted extensions.  Errors name ``option``.
+    """
+    import os
+    from pathlib import Path
+
+    if path is None:
+        return None
+    p = Path(path)
+    parent = p.parent if str(p.parent) else Path(".")
+    if directory:
+        if p.exists() and not p.is_dir():
+            raise InputError(f"{p} is a file, expected a folder", field=option)
+        parent = p if p.exists() else parent
+    elif p.is_dir():
+        raise InputError(f"{p} is a directory, expected a file name", field=option)
+    elif p.exists() and not p.is_file():
+        raise InputError(f"{p} is not a regular file (device or pipe); expected a file name", field=option)
+    if not parent.exists():
+        raise InputError(f"folder {parent} does not exist (create it first)", field=option)
+    if not parent.is_dir():
+        raise InputError(f"{parent} is a file, not a folder", field=option)
+    if not os.access(parent, os.W_OK) or str(parent.resolve()).startswith(("/proc", "/sys")):
+        raise InputError(f"folder {parent} is not writable", field=option)
+    if suffixes and not directory and p.suffix.lower() not in suffixes:
+        raise InputError(f"unknown file type {p.suffix or '(none)'!r}; expected one of "
+                         f"{', '.join(suffixes)}", field=option)
+    return p
+
+
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def atomic_write(path, write) -> None:
+    """Write ``path`` through ``write(tmp_path)`` into a temporary file in the
+    same folder, then ``os.replace`` it into place: never a partial file."""
+    import os
+    import tempfile
+    from pathlib import Path
+
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{path.suffix}", dir=path.parent or ".")
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except OSError as err:
+        raise InputError(f"cannot write {path}: {err.strerror or err}", field=str(path)) from None
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)

@@ -47,13 +47,15 @@ def motor():
 @click.option("--cert-org", help="Certification body (NAR, TRA, ...).")
 @click.option("--availability", type=click.Choice(["regular", "occasional", "OOP",
                                                     "available", "all"]))
-@click.option("--max-results", type=int, default=20, show_default=True)
+@click.option("--max-results", type=click.IntRange(min=1, max=1000), default=20, show_default=True)
 @offline_option
 @json_option
 @handle_errors
 def search_cmd(designation, common_name, manufacturer, impulse_class, diameter_mm, motor_type,
                cert_org, availability, max_results, offline, as_json):
     """Search ThrustCurve.org by designation, name, manufacturer, class or diameter."""
+    if diameter_mm is not None and not 5.0 <= diameter_mm <= 500.0:
+        raise InputError(f"expected a motor diameter of 5 to 500 mm, got {diameter_mm:g}", field="--diameter-mm")
     with offline_mode(offline):
         found = tc.search(designation=designation, common_name=common_name,
                           manufacturer=manufacturer, impulse_class=impulse_class,
@@ -96,6 +98,8 @@ def plot_thrust(motor, info: tc.MotorInfo, *, filename=None):
 @handle_errors
 def get_cmd(designation, manufacturer, fmt, output_dir, plot, offline, as_json):
     """Download DESIGNATION's data file, write it and print a summary."""
+    from ironbark_opt.cli_common import check_output_path
+    check_output_path(output_dir, "--output-dir", directory=True)
     with offline_mode(offline):
         info, simfile = tc.fetch_motor_file(designation, manufacturer=manufacturer, format=fmt)
     path = tc.save_file(info, simfile, output_dir)

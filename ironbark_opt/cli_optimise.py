@@ -2,10 +2,12 @@
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
+                                     json_option, table_option)
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
@@ -59,20 +61,44 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
                    "processes, or a Dask scheduler.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
               help="Write the flight at the optimum (PNG/PDF/SVG).")
+@click.option("--allow-unstable", is_flag=True, help="Accept a rocket whose static margin is below zero.")
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, forecast, site, time, min_rail_speed, min_margin,
                     max_ballast, ballast_x, free_position, rail_exit, solve_for, table, calibration_path,
-                    processes, executor, plot_path, as_json):
+                    processes, executor, plot_path, allow_unstable, as_json):
     """Ballast (and motor), or the air-brake deployment, that put ROCKET's apogee on --target."""
     from ironbark_opt.optimise.ballast import solve_ballast
     from ironbark_opt.optimise.motor_choice import choose_motor
+    from ironbark_opt.errors import InputError
+    from ironbark_opt.optimise.target import parse_target
+    from ironbark_opt.plausibility import check_flight_inputs, option_overrides
+    from ironbark_opt.validate import number
     from ironbark_opt.vehicle import load_setup
 
+    check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
+    if processes is not None and processes < 1:
+        raise InputError(f"must be >= 1, got {processes}", field="--processes")
+    for value, option in ((min_margin, "--min-margin"), (min_rail_speed, "--min-rail-speed")):
+        if value is not None:
+            try:
+                number(value, option)
+            except InputError as err:
+                raise InputError(err.message, field=option) from None
+    if min_rail_speed is not None and min_rail_speed < 0:
+        raise InputError(f"must be >= 0 m/s, got {min_rail_speed}", field="--min-rail-speed")
+    for item in motors:
+        looks_like_path = any(ch in item for ch in "/\\") or item.lower().endswith((".eng", ".rse", ".csv"))
+        if looks_like_path and not Path(item).exists():
+            raise InputError("motor file not found (a path, so not looked up on ThrustCurve.org)",
+                             source=item, field="--motor")
+    parse_target(target)
     setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table), forecast, site, time)
     if calibration_path is not None:
         from ironbark_opt.telemetry.calibration_file import apply_calibration
         setup = apply_calibration(setup, calibration_path)
+    opts = option_overrides(setup, ballast_x_m=ballast_x, max_ballast=max_ballast, body_length=setup.body_length)
+    check_flight_inputs(setup, {**setup.nominal, **opts["parameters"]}, allow_unstable=allow_unstable)
     if solve_for != "ballast":
         if motors or free_position or max_ballast is not None or ballast_x is not None:
             raise click.UsageError(f"--solve {solve_for} takes no ballast or motor options")
@@ -97,6 +123,8 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
             result.update({k: v for k, v in best.to_dict().items() if k not in ("parameters",)})
             result["motor"] = best.motor
         result["feasible"] = ranking.best is not None
+        for label, message in ranking.failures:
+            click.echo(f"warning: motor {label}: {message}", err=True)
         if best is not None and plot_path:
             from ironbark_opt.optimise.motor_choice import expand_candidates
             for cand in expand_candidates(motors):
@@ -104,7 +132,13 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
                 if motor.designation == best.motor:
                     _plot(dataclasses.replace(setup, motor=motor), best, plot_path)
                     break
-        emit(result, as_json, ranking.summary())
+        if ranking.solutions or as_json:     # nothing solved: the failures are on stderr (and in JSON)
+            emit(result, as_json, ranking.summary())
+        if not ranking.solutions:
+            from ironbark_opt.errors import SolverError
+            label, message = ranking.failures[0] if ranking.failures else ("?", "")
+            raise SolverError(f"no candidate motor could be solved ({len(ranking.failures)} failed, "
+                              f"listed above); first: {label}: {message[:160]}")
         return
     solution = solve_ballast(setup, target, **kwargs)
     _plot(setup, solution, plot_path)
@@ -120,10 +154,11 @@ def _plot(setup, solution, path):
     from ironbark_opt.flight import simulate
     from ironbark_opt.plots import plot_flight
     if hasattr(solution, "variable"):                 # an AirbrakeSolution
-        plot_flight(simulate(setup, parameters=dict(solution.parameters)), filename=path)
-        return
-    plot_flight(simulate(setup, parameters={"ballast_mass": solution.values["ballast_kg"],
-                                            "ballast_x": solution.values["ballast_x_m"]}), filename=path)
+        flight = simulate(setup, parameters=dict(solution.parameters))
+    else:
+        flight = simulate(setup, parameters={"ballast_mass": solution.values["ballast_kg"],
+                                             "ballast_x": solution.values["ballast_x_m"]})
+    atomic_write(path, lambda tmp: plot_flight(flight, filename=tmp))
 
 
 COMMANDS = [ballast_command]

@@ -1,11 +1,10 @@
 """``ironbark simulate ROCKET``: fly a rocket file to apogee (and landing)."""
 from __future__ import annotations
 
-import math
-
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
+                                     json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 
@@ -29,16 +28,22 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, writable=True), help="Write the time series.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
               help="Write an overview figure (PNG/PDF/SVG).")
+@click.option("--allow-unstable", is_flag=True, help="Fly a rocket whose static margin falls below zero.")
 @json_option
 @handle_errors
 def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevation_m, rail_exit, ballast_kg,
-                     ballast_x_m, config, table, calibration_path, descent, jit, csv_path, plot_path, as_json):
+                     ballast_x_m, config, table, calibration_path, descent, jit, csv_path, plot_path,
+                     allow_unstable, as_json):
     """Simulate ROCKET (.toml or .ork) to apogee and print the summary."""
     import dataclasses
 
     from ironbark_opt.flight import simulate
     from ironbark_opt.vehicle import load_setup
 
+    from ironbark_opt.plausibility import check_ascent_margin, check_flight_inputs, option_overrides
+
+    check_output_path(csv_path, "--csv", (".csv", ".txt"))
+    check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
     kwargs = {"rail_exit": rail_exit, "table": table}
     if config is not None:
         kwargs["config"] = config
@@ -46,26 +51,27 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
     if calibration_path is not None:
         from ironbark_opt.telemetry.calibration_file import apply_calibration
         setup = apply_calibration(setup, calibration_path)
-    if elevation_m is not None:
-        setup = dataclasses.replace(setup, site_elevation=elevation_m)
-    overrides = {}
-    for name, value in (("rail_length", rail_length), ("ballast_mass", ballast_kg), ("ballast_x", ballast_x_m)):
-        if value is not None:
-            overrides[name] = value
-    if inclination_deg is not None:
-        overrides["inclination"] = math.radians(inclination_deg)
-    if heading_deg is not None:
-        overrides["heading"] = math.radians(heading_deg)
+    opts = option_overrides(setup, rail_length=rail_length, inclination_deg=inclination_deg,
+                            heading_deg=heading_deg, elevation_m=elevation_m, ballast_kg=ballast_kg,
+                            ballast_x_m=ballast_x_m, body_length=setup.body_length)
+    if opts["site_elevation"] is not None:
+        setup = dataclasses.replace(setup, site_elevation=opts["site_elevation"])
+    overrides = opts["parameters"]
+    check_flight_inputs(setup, {**setup.nominal, **overrides}, allow_unstable=allow_unstable)
     flight = simulate(setup, parameters=overrides, descent=descent, jit="auto" if jit is None else jit)
+    check_ascent_margin(flight.summary_values["static_margin_min_cal"],
+                        flight.summary_values["static_margin_min_time_s"], allow_unstable=allow_unstable,
+                        source=setup.source)
     if csv_path:
-        flight.to_dataframe().to_csv(csv_path, index=False)
+        atomic_write(csv_path, lambda tmp: flight.to_dataframe().to_csv(tmp, index=False))
     if plot_path:
         import matplotlib
         matplotlib.use("Agg")
         from ironbark_opt.plots import plot_flight
-        plot_flight(flight, filename=plot_path)
+        atomic_write(plot_path, lambda tmp: plot_flight(flight, filename=tmp))
     result = flight.to_dict()
     result["rocket"] = setup.name
+    result["recovery_devices"] = len(setup.parachutes)
     emit(result, as_json, flight.summary())
 
 

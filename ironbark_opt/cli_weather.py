@@ -89,6 +89,9 @@ def get_cmd(model, site, lat_deg, lon_deg, elevation_m, time_iso, station, path,
             csv_path, plot_path, offline, as_json):
     """Fetch a profile over a site and print it (optionally CSV, JSON, plot)."""
     from ironbark_opt.atmosphere.ncss import parse_iso
+    from ironbark_opt.cli_common import PLOT_SUFFIXES, check_output_path
+    check_output_path(csv_path, "--csv", (".csv", ".txt"))
+    check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
     time = parse_iso(time_iso) if time_iso else None
     if site:
         s = get_site(site)

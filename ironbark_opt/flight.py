@@ -100,6 +100,7 @@ class Flight:
             f"  launch mass        {s['launch_mass_kg']:10.3f} kg, static margin at t=0 "
             f"{s['static_margin_initial_cal']:.2f} cal",
             f"  apogee drift       {s['apogee_east_m']:10.1f} m east, {s['apogee_north_m']:.1f} m north",
+            f"  min static margin  {s['static_margin_min_cal']:10.2f} cal at {s['static_margin_min_time_s']:.2f} s",
         ]
         if "separation_time_s" in s:
             lines.append(f"  separation         {s['separation_time_s']:10.2f} s at {s['separation_altitude_agl_m']:.1f} m "
@@ -114,6 +115,9 @@ class Flight:
         if "landing_time_s" in s:
             lines.append(f"  landing            {s['landing_time_s']:10.1f} s, {s['landing_east_m']:.1f} m east, "
                          f"{s['landing_north_m']:.1f} m north ({s['landing_distance_m']:.1f} m from the rail)")
+            if s.get("recovery_devices") == 0:
+                lines.append(f"  NOTE: no recovery device in the file: ballistic impact at "
+                             f"{s['landing_speed_mps']:.0f} m/s")
         return "\n".join(lines)
 
 
@@ -173,6 +177,8 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
         "burnout_time_s": float(run["t_burnout"]),
         "burnout_altitude_agl_m": float(df["altitude_agl_m"][burn]),
         "launch_mass_kg": float(df["mass_kg"][0]),
+        "static_margin_min_cal": float(df["static_margin_cal"][flying].min()),
+        "static_margin_min_time_s": float(df["time_s"][flying][int(df["static_margin_cal"][flying].argmin())]),
         "site_elevation_m": float(elev),
     }
     if "t_separation" in run:                    # a staged rocket (dynamics/staged.py)
@@ -195,7 +201,9 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
     if "t_landing" in run:
         xl = run["x_landing"]
         s.update(landing_time_s=float(run["t_landing"]), landing_east_m=float(xl[0]),
-                 landing_north_m=float(xl[1]), landing_distance_m=float(np.hypot(xl[0], xl[1])))
+                 landing_north_m=float(xl[1]), landing_distance_m=float(np.hypot(xl[0], xl[1])),
+                 landing_speed_mps=float(np.linalg.norm(xl[3:6])),
+                 recovery_devices=len(model.setup.parachutes))
     return s
 
 

@@ -21,8 +21,10 @@ def _finish(fig, filename):
     return fig
 
 
-def _vs_time(flight, column, ylabel, ax, filename, scale=1.0, overlay=None):
+def _vs_time(flight, column, ylabel, ax, filename, scale=1.0, overlay=None, ascent_only=False):
     df = flight.to_dataframe()
+    if ascent_only:     # under a parachute the body's angle of attack is not a flight quantity
+        df = df[df["phase"].isin(["rail", "boost", "coast"])]
     fig, ax = _axes(ax)
     ax.plot(df["time_s"], df[column] * scale, label="Ironbark-Opt")
     if overlay is not None and column in overlay:
@@ -56,8 +58,9 @@ def plot_mach(flight, ax=None, *, filename=None, overlay=None):
 
 
 def plot_alpha(flight, ax=None, *, filename=None, overlay=None):
-    """Total angle of attack [deg] vs time."""
-    return _vs_time(flight, "alpha_deg", "angle of attack [deg]", ax, filename, overlay=overlay)
+    """Total angle of attack [deg] vs time, ascent only (rail exit to apogee)."""
+    return _vs_time(flight, "alpha_deg", "angle of attack [deg]", ax, filename, overlay=overlay,
+                    ascent_only=True)
 
 
 def plot_trajectory_3d(flight, ax=None, *, filename=None):

@@ -127,6 +127,9 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
     if not pressure_correction and motor.nozzle_exit_area is not None:
         motor = dataclasses.replace(motor, nozzle_exit_area=None)
     rocket = rf.dry_rocket(motor)
+    from ironbark_opt.motors import load_motor
+    from ironbark_opt.plausibility import check_rocket_file
+    check_rocket_file(rf, rocket, motor, load_motor(rf.motor.file, rf.motor.designation))
     table = load_aero_table(rf.aero, rocket)
     jet, jet_source = jet_area_of(motor)
     aero = build_aero_model(rocket, table=table, surface_roughness=rf.aero.surface_roughness,
@@ -158,7 +161,7 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                        nominal=nominal, parachutes=chutes, name=rocket.name,
                        ballast_mass_max=ballast.mass_max,
                        ballast_x_range=None if ballast.x_min is None else (ballast.x_min, ballast.x_max),
-                       source=str(rf.source), airbrakes=brakes)
+                       source=str(rf.source), airbrakes=brakes, body_length=float(rocket.length()))
 
 
 def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> FlightSetup:
@@ -188,7 +191,8 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     rf = load_rocket_file(path, config=config)
     if table is not None:
         table = Path(table)
-        if not table.with_suffix(".csv").exists():
+        stem = table.with_suffix("") if table.suffix.lower() in (".csv", ".json") else table
+        if not Path(f"{stem}.csv").exists():
             raise InputError("aerodynamic table not found (expected the .csv written by "
                              "'ironbark aero build')", source=table, field="table")
         rf = dataclasses.replace(rf, aero=dataclasses.replace(
@@ -215,6 +219,8 @@ def load_rocket_geometry(path):
 
 def _existing(path) -> Path:
     path = Path(path)
+    if path.is_dir():
+        raise InputError("is a directory, expected a rocket file (.toml or .ork)", source=path)
     if not path.exists():
         raise InputError("file not found", source=path)
     return path

@@ -56,7 +56,15 @@ def _read_numeric_csv(path):
     if not path.exists():
         raise InputError("file not found", source=path)
     header, header_line, rows, last_comment = None, None, [], None
-    with open(path, newline="", encoding="utf-8-sig") as fh:
+    try:
+        text = path.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not a UTF-8 text file (byte {exc.start}); expected a CSV of Mach and Cd",
+                         source=path) from None
+    except IsADirectoryError:
+        raise InputError("is a directory, expected a CSV file", source=path) from None
+    import io
+    with io.StringIO(text, newline="") as fh:
         for lineno, rec in enumerate(csv.reader(fh), start=1):
             rec = [f.strip() for f in rec]
             while rec and rec[-1] == "":
@@ -95,7 +103,15 @@ def _read_text_csv(path):
     if not path.exists():
         raise InputError("file not found", source=path)
     header, hline, rows = None, None, []
-    with open(path, newline="", encoding="utf-8-sig") as fh:
+    try:
+        text = path.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not a UTF-8 text file (byte {exc.start}); expected a CSV of Mach and Cd",
+                         source=path) from None
+    except IsADirectoryError:
+        raise InputError("is a directory, expected a CSV file", source=path) from None
+    import io
+    with io.StringIO(text, newline="") as fh:
         for lineno, rec in enumerate(csv.reader(fh), start=1):
             rec = [f.strip() for f in rec]
             if not any(rec) or rec[0].startswith("#"):
@@ -161,6 +177,9 @@ def _merge_sorted(mach, values, lines, path, duplicates, field):
     return np.array(out_m), np.array(out_v)
 
 
+_CD_MAX = 5.0      # [-] largest plausible whole-rocket drag coefficient
+
+
 def _read_cd_curves(path, names, duplicates, want_power_on):
     """-> {'CA': (mach, cd), maybe 'CA_power_on': (mach, cd)} from one file."""
     header, hline, rows = _read_numeric_csv(path)
@@ -187,6 +206,24 @@ def _read_cd_curves(path, names, duplicates, want_power_on):
     if np.any(data[:, im] < 0):
         bad = lines[int(np.argmax(data[:, im] < 0))]
         raise InputError("negative Mach number", source=path, line=bad, field="mach")
+    if data.shape[0] < 2:
+        raise InputError(f"a drag curve needs at least 2 rows (Mach, Cd), found {data.shape[0]}",
+                         source=path, line=lines[0] if lines else None, field="mach")
+    # a plain (mach, cd) table is typed in Mach order: a step back is a typo.  Files with a
+    # header may be exported time series (OpenRocket: Mach rises and falls) and are sorted.
+    back = np.flatnonzero(np.diff(data[:, im]) < 0) if header is None else np.array([], int)
+    if back.size:
+        i = int(back[0]) + 1
+        raise InputError(f"Mach must increase down the file: {data[i, im]:g} follows {data[i - 1, im]:g}",
+                         source=path, line=lines[i], field="mach")
+    for ic in icols.values():
+        field = header[ic] if header else "cd"
+        # Cd of a whole rocket: 0.2-1.5 typical (Hoerner, Fluid-Dynamic Drag); over 5 is not a rocket
+        bad = np.flatnonzero((data[:, ic] < 0) | (data[:, ic] > _CD_MAX))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(f"drag coefficient {data[i, ic]:g} is outside [0, {_CD_MAX:g}]",
+                             source=path, line=lines[i], field=field)
     out = {}
     for cname, ic in icols.items():
         field = header[ic] if header else "cd"

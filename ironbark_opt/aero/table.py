@@ -448,20 +448,30 @@ class AeroTable:
 
         Returns the two paths written.
         """
+        import os
         stem = _stem(path)
-        csv_path, json_path = stem.with_suffix(".csv"), stem.with_suffix(".json")
+        # append (not with_suffix): a stem with dots, "01.One-stage_OR22.02", keeps its whole name
+        csv_path, json_path = Path(f"{stem}.csv"), Path(f"{stem}.json")
         axis_cols = self._axis_columns()
         names = self.coefficient_names
         grids = np.meshgrid(*[v for _, v in axis_cols], indexing="ij")
-        with open(csv_path, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow([n for n, _ in axis_cols] + list(names))
-            for idx in np.ndindex(*grids[0].shape):
-                w.writerow([repr(float(g[idx])) for g in grids]
-                           + [repr(float(self._splines[c].values[idx])) for c in names])
-        with open(json_path, "w") as fh:
-            json.dump(self.to_json_dict(), fh, indent=2)
-            fh.write("\n")
+        tmp_csv, tmp_json = Path(f"{csv_path}.tmp{os.getpid()}"), Path(f"{json_path}.tmp{os.getpid()}")
+        try:                # temporary files + os.replace: never a partial table
+            with open(tmp_csv, "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow([n for n, _ in axis_cols] + list(names))
+                for idx in np.ndindex(*grids[0].shape):
+                    w.writerow([repr(float(g[idx])) for g in grids]
+                               + [repr(float(self._splines[c].values[idx])) for c in names])
+            with open(tmp_json, "w") as fh:
+                json.dump(self.to_json_dict(), fh, indent=2)
+                fh.write("\n")
+            os.replace(tmp_csv, csv_path)
+            os.replace(tmp_json, json_path)
+        finally:
+            for tmp in (tmp_csv, tmp_json):
+                if tmp.exists():
+                    tmp.unlink()
         return csv_path, json_path
 
     @classmethod
@@ -473,7 +483,7 @@ class AeroTable:
         sorted (mach, then alpha_deg[, then reynolds], increasing) and complete.
         """
         stem = _stem(path)
-        csv_path, json_path = stem.with_suffix(".csv"), stem.with_suffix(".json")
+        csv_path, json_path = Path(f"{stem}.csv"), Path(f"{stem}.json")
         meta = _read_json(json_path)
         axes, coeffs = _read_grid_csv(csv_path)
         listed = meta.get("coefficients")

@@ -134,7 +134,8 @@ class FlightModel:
         x_b = np.array(self._run["boost"](x_r, t_r, t_b, p))[:, -1]
         vz_b = float(self.vz_l(x_b))
         if vz_b <= 0:
-            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs")
+            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs; check the "
+                              "launch mass, the motor, launch.inclination_deg and the wind")
         self._ensure_stable(x_b, t_b, t_b + vz_b / G0 + 2.0, p)
 
     def discretisation(self) -> tuple[int, int, float]:
@@ -423,7 +424,8 @@ class FlightModel:
         x_b = X_boost[:, -1]
         vz_b = float(self.vz_l(x_b))
         if vz_b <= 0:
-            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs")
+            raise SolverError("vertical velocity at burnout is not positive: the rocket never climbs; check the "
+                              "launch mass, the motor, launch.inclination_deg and the wind")
         # Drag only shortens the coast below the vacuum time v_z / g; the margin
         # covers gravity falling off with height.
         t_end = t_b + vz_b / G0 + 2.0
@@ -674,8 +676,8 @@ class FlightModel:
             x_cur = np.array(step.map(n)(x_k, t_k[None, :], h[None, :], P))
             t_cur = t_k + h
             if keep_samples:
-                xs.append(x_cur[:, :1])
-                ts.append(t_cur[:1])
+                xs.append(x_cur[:, :1].copy())    # copies: the next stage updates x_cur/t_cur in place
+                ts.append(t_cur[:1].copy())
                 labels.append(label)
         out = {"t_landing": t_cur, "x_landing": x_cur}
         if keep_samples:

@@ -102,6 +102,8 @@ class FlightSetup:
     airbrakes : BrakeSchedule or None
         Deployable drag device (:mod:`ironbark_opt.aero.airbrakes`), acting
         in the coast.
+    body_length : float or None [m]
+        Nose tip to the aft end of the body (for plausibility checks).
     """
 
     motor: Any
@@ -120,6 +122,7 @@ class FlightSetup:
     ballast_x_range: tuple | None = None
     source: str | None = None
     airbrakes: Any = None
+    body_length: float | None = None
 
     def nominal_parameters(self, **overrides) -> np.ndarray:
         """Parameter vector with the case's nominal values and ``overrides``."""

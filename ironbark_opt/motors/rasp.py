@@ -55,6 +55,8 @@ def read_text(path: str | PathLike) -> str:
         raw = p.read_bytes()
     except FileNotFoundError:
         raise InputError("motor file not found", source=p) from None
+    except IsADirectoryError:
+        raise InputError("is a directory, expected a motor file (.eng, .rse, .csv)", source=p) from None
     except OSError as exc:
         raise InputError(f"cannot read motor file: {exc.strerror}", source=p) from None
     try:

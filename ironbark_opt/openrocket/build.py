@@ -138,10 +138,11 @@ def _aero_table_path(rocket: Rocket, doc: OrkDocument) -> Path:
     from ironbark_opt import net
     from ironbark_opt.aero.empirical_drag import pressure_drag_table
     key = hashlib.sha1(str(doc.path.resolve()).encode()).hexdigest()[:12]
-    stem = net.cache_dir() / "ork-aero" / f"{doc.path.stem.replace(' ', '_')}-{key}"
+    # dots in the name ("01.One-stage_OR22.02") would read as a suffix: keep the name whole
+    stem = net.cache_dir() / "ork-aero" / f"{doc.path.stem.replace(' ', '_').replace('.', '_')}-{key}"
     stem.parent.mkdir(parents=True, exist_ok=True)
     pressure_drag_table(rocket).save(stem)
-    return stem.with_suffix(".json")
+    return Path(f"{stem}.json")
 
 
 def rocket_file(doc: OrkDocument, config: str | None = None):

@@ -90,16 +90,32 @@ def select_config(configs: list[MotorConfig], wanted: str | None, source) -> Mot
                 return c
         return usable[0]
     w = wanted.strip().lower()
+    if not w:
+        raise InputError("an empty --config; give a configuration id, name or motor designation",
+                         source=source, field="config")
+    bare = w.strip("[] ")       # "[L1940X]" as a person types the label of "[L1940X-P]"
+
+    def designations(c):
+        return [m.designation.lower() for _, m in c.motors]
+
     for test in (lambda c: c.config_id.lower() == w, lambda c: c.name.lower() == w,
                  lambda c: c.label().lower() == w, lambda c: c.config_id.lower().startswith(w),
-                 lambda c: any(m.designation.lower() == w for _, m in c.motors)):
+                 lambda c: any(d == w or d == bare for d in designations(c)),
+                 lambda c: c.label().lower().strip("[] ") == bare,
+                 # the designation without its suffix: L1940X for L1940X-P, L1940 for L1940X
+                 lambda c: any(d.startswith(bare) for d in designations(c))):
         found = [c for c in usable if test(c)]
         if len(found) == 1:
             return found[0]
         if len(found) > 1:
             break
-    listing = "; ".join(f"{c.config_id[:8]} {c.label()}" for c in usable)
-    raise InputError(f"no single motor configuration matches {wanted!r}; available: {listing}",
+    import difflib
+    labels = {c.label(): c for c in usable}
+    near = difflib.get_close_matches(wanted.strip(), list(labels), n=3, cutoff=0.4)
+    listing = "; ".join(f"{c.config_id[:8]} {c.label()}" for c in usable[:8])
+    hint = f"did you mean {', '.join(near)}? " if near else ""
+    raise InputError(f"no single motor configuration matches {wanted!r}; {hint}available: {listing}"
+                     + (f" (and {len(usable) - 8} more)" if len(usable) > 8 else ""),
                      source=source, field="config")
 
 
@@ -234,6 +250,7 @@ def find_motor_file(designation: str, manufacturer: str, ork_path,
     if hit is not None:
         return hit
     where = ", ".join(str(d) for d in dirs)
+    why = str(why).split(": connection failed")[0][:120] + (": no network" if ": connection failed" in str(why) else "")
     raise InputError(f"motor {manufacturer + ' ' if manufacturer else ''}{designation} not found: "
                      f"searched motor files (.eng/.rse) in {where}; {why}. Put its .eng/.rse file "
                      f"next to the .ork or in a directory listed in IRONBARK_MOTOR_PATH",

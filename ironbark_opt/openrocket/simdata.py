@@ -120,12 +120,14 @@ _TAGS = {"rail_length": "launchrodlength", "inclination": "launchrodangle",
 
 def _launch(cond: Element) -> tuple[LaunchSpec, bool]:
     angle = math.radians(cond.number("launchrodangle", 0.0))
-    if not 0.0 <= angle < math.pi / 2:
-        raise cond.error(f"launch rod angle must be within [0, 90) deg from vertical, got "
+    if not abs(angle) < math.pi / 2:
+        raise cond.error(f"launch rod angle must be within (-90, 90) deg from vertical, got "
                          f"{math.degrees(angle):g}", "launchrodangle")
     into_wind = cond.flag("launchintowind", False)
     wind_from = cond.number("winddirection", math.pi / 2)
     heading = math.radians(cond.number("launchroddirection", 0.0))
+    if angle < 0.0:        # OpenRocket tilts either way: -a towards d is +a towards d + 180 deg
+        angle, heading = -angle, heading + math.pi
     if into_wind:
         heading = wind_from           # the rod leans into the wind
     temperature = pressure = None

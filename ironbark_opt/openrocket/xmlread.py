@@ -150,6 +150,25 @@ def parse_number(raw: str, *, auto: bool = False, where: Element | None = None,
     return val
 
 
+#: Most bytes an .ork container may inflate to [B]: real OpenRocket designs are a few MB
+#: (the largest of the OpenRocket examples inflates to under 10 MB); refuse zip/gzip bombs.
+MAX_INFLATED_BYTES = 200 * 1024 * 1024
+
+
+def _too_big(path, size=None) -> InputError:
+    got = f" ({size / 2**20:.0f} MB)" if size is not None else ""
+    return InputError(f"the container would inflate to more than {MAX_INFLATED_BYTES // 2**20} MB{got}; "
+                      f"refused (real OpenRocket files inflate to a few MB)", source=path)
+
+
+def _inflate_capped(stream, path) -> bytes:
+    """Read a decompressing stream, refusing more than MAX_INFLATED_BYTES."""
+    data = stream.read(MAX_INFLATED_BYTES + 1)
+    if len(data) > MAX_INFLATED_BYTES:
+        raise _too_big(path)
+    return data
+
+
 def read_bytes(path) -> bytes:
     """The XML bytes of an .ork file in any container (zip, gzip, plain)."""
     path = Path(path)
@@ -166,13 +185,18 @@ def read_bytes(path) -> bytes:
                                      "first entry)", source=path)
                 # OpenRocket writes the design as the first entry (rocket.ork)
                 first = next((n for n in names if n.lower().endswith((".ork", ".xml"))), names[0])
-                return zf.read(first)
+                size = zf.getinfo(first).file_size
+                if size > MAX_INFLATED_BYTES:
+                    raise _too_big(path, size)
+                with zf.open(first) as fh:        # the header may lie: cap the stream too
+                    return _inflate_capped(fh, path)
         except (zipfile.BadZipFile, zlib.error, EOFError, KeyError) as err:
             raise InputError(f"damaged zip container (truncated or corrupt .ork): {err}",
                              source=path) from None
     if data[:2] == b"\x1f\x8b":
         try:
-            return gzip.decompress(data)
+            with gzip.GzipFile(fileobj=io.BytesIO(data)) as fh:
+                return _inflate_capped(fh, path)
         except (OSError, EOFError, zlib.error) as err:
             raise InputError(f"damaged gzip container (truncated or corrupt .ork): {err}",
                              source=path) from None

@@ -193,6 +193,8 @@ class _Reader:
         if not isinstance(data[key], str):
             raise self.error(f"expected a file path string, got {data[key]!r}", table, key)
         p = (self.path.parent / data[key]).resolve()
+        if p.is_dir():
+            raise self.error(f"{p} is a directory, expected a file", table, key)
         if not p.is_file():
             raise self.error(f"file not found: {p}", table, key)
         return p
@@ -238,7 +240,13 @@ def loads_rocket_toml(text: str, path) -> RocketFile:
         if line is None and match:
             line = int(match.group(1))
         msg = getattr(exc, "msg", None) or re.sub(r"\s*\(at line.*\)$", "", str(exc))
-        raise InputError(f"TOML syntax error: {msg}", source=path, line=line) from None
+        field = None
+        if "overwrite" in msg.lower() and line is not None and 0 < line <= len(text.splitlines()):
+            key = text.splitlines()[line - 1].split("=", 1)[0].strip()
+            if key:
+                field = key
+                msg = f"duplicate key '{key}' (a key may be given once per table)"
+        raise InputError(f"TOML syntax error: {msg}", source=path, line=line, field=field) from None
     rd = _Reader(path, text)
     rd.check_keys(data, TOP_KEYS, "", label="(top level)")
     for required in ("rocket", "component", "motor"):

@@ -1,0 +1,127 @@
+"""Valid inputs the bad-input work must keep accepting (issue 15), and the
+plausibility rules against analytic results."""
+from __future__ import annotations
+
+import math
+import warnings
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ironbark_opt.aero.table import AeroTable
+from ironbark_opt.errors import InputError
+from ironbark_opt.openrocket import read_ork
+from ironbark_opt.plausibility import check_flight_inputs, check_inertia
+
+ROOT = Path(__file__).resolve().parents[2]
+ORK = ROOT / "tests/data/ork/01.One-stage_OR22.02.ork"
+
+
+def test_config_matches_designation_as_typed():
+    doc = read_ork(ORK)
+    cfg = doc.config("[G80T]")                   # the label is "[G80T-10]"
+    assert cfg.label() == "[G80T-10]"
+    assert doc.config("g74w").label() == "[G74W-9]"
+    with pytest.raises(InputError, match="did you mean") as err:
+        doc.config("[G80X]")
+    print(err.value)
+
+
+def test_negative_rod_angle_tilts_the_other_way(tmp_path):
+    with zipfile.ZipFile(ORK) as zf:
+        xml = zf.read("rocket.ork").decode()
+    xml = xml.replace("<launchrodangle>0.0</launchrodangle>", "<launchrodangle>-2.0</launchrodangle>", 1)
+    out = tmp_path / "tilted.ork"
+    with zipfile.ZipFile(out, "w") as zf:
+        zf.writestr("rocket.ork", xml)
+    sims = read_ork(out).simulations
+    inc = [math.degrees(s.launch.inclination) for s in sims]
+    head = [math.degrees(s.launch.heading) for s in sims]
+    # -2 deg towards 90 deg (east) is +2 deg towards 270 deg: 88 deg above horizontal
+    assert inc[0] == pytest.approx(88.0, abs=1e-9) and head[0] == pytest.approx(270.0, abs=1e-9)
+    print(f"rod -2 deg @ 90 deg -> inclination {inc[0]:.3f} deg, heading {head[0]:.3f} deg")
+
+
+def test_table_name_with_dots_round_trips(tmp_path):
+    t = AeroTable.load(ROOT / "tables/Kestrel.csv")
+    csv_path, json_path = t.save(tmp_path / "01.One-stage_OR22.02")
+    assert csv_path.name == "01.One-stage_OR22.02.csv" and json_path.name == "01.One-stage_OR22.02.json"
+    back = AeroTable.load(json_path)
+    np.testing.assert_array_equal(back.values("CA"), t.values("CA"))
+    assert not list(tmp_path.glob("*.tmp*"))
+
+
+def test_inertia_rules_against_analytic_bodies():
+    # solid cylinder, r = 0.05 m, h = 2 m, m = 10 kg: I_axial = m r^2 / 2, I_t = m (3 r^2 + h^2) / 12
+    m, r, h = 10.0, 0.05, 2.0
+    check_inertia((m * (3 * r * r + h * h) / 12, m * r * r / 2))
+    # thin disc: I_axial = 2 I_transverse exactly, the limit of the triangle inequality
+    check_inertia((m * r * r / 4, m * r * r / 2))
+    with pytest.raises(InputError, match="triangle"):
+        check_inertia((25.0, 70.0))               # the published file's 70 vs 25 kg m^2
+    with pytest.raises(InputError, match="positive definite"):
+        check_inertia([[0.034, 9.0, 0.0], [9.0, 6.321, 0.0], [0.0, 0.0, 6.321]])
+    rot = np.array([[1, 0, 0], [0, math.cos(0.3), -math.sin(0.3)], [0, math.sin(0.3), math.cos(0.3)]])
+    check_inertia(rot @ np.diag([1.0, 2.0, 2.5]) @ rot.T)      # rotated valid tensor passes
+
+
+def test_preflight_margin_matches_the_flight_model():
+    """The plausibility layer's static margin at launch against the 6-DOF model's output
+    at t = 0 (an independent code path: CasADi mass properties and aero outputs)."""
+    from ironbark_opt.flight import simulate
+    from ironbark_opt.vehicle import load_setup
+
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        pre = check_flight_inputs(setup, dict(setup.nominal))["static_margin_launch_cal"]
+    flown = simulate(setup).summary_values
+    err = abs(pre - flown["static_margin_initial_cal"])
+    print(f"margin at launch: plausibility {pre:.4f} cal, flight model {flown['static_margin_initial_cal']:.4f} "
+          f"cal, |diff| {err:.4f} cal (tolerance 0.05: Mach 0.1 vs ~0)")
+    assert err < 0.05
+    assert flown["static_margin_min_cal"] <= flown["static_margin_rail_exit_cal"] + 1e-12
+
+
+def test_descent_table_and_no_recovery_note():
+    """Two-stage descent (Kestrel: drogue, then main at 300 m): the time series is in
+    time order (the stage-crossing rows were views overwritten by the next stage);
+    a file without recovery says so (Calisto: ballistic)."""
+    from ironbark_opt.flight import simulate
+    from ironbark_opt.vehicle import load_setup
+
+    k = simulate(load_setup(ROOT / "examples/kestrel/kestrel.toml"), descent=True)
+    t = k.to_dataframe()["time_s"].to_numpy()
+    back = int(np.sum(np.diff(t) < 0))
+    print(f"Kestrel descent: {t.size} rows, {back} out of time order, landing {k.summary_values['landing_time_s']:.1f} s")
+    assert back == 0
+    assert k.summary_values["recovery_devices"] == 2 and "no recovery device" not in k.summary()
+    c = simulate(load_setup(ROOT / "examples/calisto/calisto.toml"), descent=True)
+    assert c.summary_values["recovery_devices"] == 0
+    assert "no recovery device" in c.summary()
+    print(c.summary().splitlines()[-1])
+
+
+def test_unstable_rocket_flies_only_with_the_flag(tmp_path):
+    """CG moved to 2.40 m (CP about 1.7 m): refused (exit 2) without --allow-unstable;
+    with it the flight runs and the JSON carries the minimum static margin (< 0)."""
+    import json
+    import shutil
+
+    from click.testing import CliRunner
+
+    from ironbark_opt.cli import main
+
+    shutil.copytree(ROOT / "examples/calisto", tmp_path / "c")
+    toml = tmp_path / "c/calisto.toml"
+    toml.write_text(toml.read_text().replace("cg_x = 1.278", "cg_x = 2.40"))
+    refused = CliRunner().invoke(main, ["simulate", str(toml), "--json"])
+    assert refused.exit_code == 2 and "--allow-unstable" in refused.stderr and not refused.stdout
+    flown = CliRunner().invoke(main, ["simulate", str(toml), "--json", "--allow-unstable"])
+    assert flown.exit_code == 0, flown.stderr
+    data = json.loads(flown.stdout)
+    print(f"unstable Calisto: min margin {data['static_margin_min_cal']:.2f} cal at "
+          f"{data['static_margin_min_time_s']:.2f} s; stderr: {flown.stderr.strip()}")
+    assert data["static_margin_min_cal"] < 0 and "static margin" in flown.stderr
