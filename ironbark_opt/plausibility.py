@@ -188,8 +188,10 @@ def static_margin_at_launch(setup, p: dict, mach: float = 0.1) -> float:
 def check_flight_inputs(setup, p: dict, *, allow_unstable: bool = False, body_length=None) -> dict:
     """Checks of a setup with its parameter values ``p`` (name -> SI), before flying.
 
-    Returns ``{"static_margin_launch_cal": ...}``.
+    Returns ``{"static_margin_launch_cal": ...}``.  A staged rocket is checked as
+    its whole stack on the pad (:class:`ironbark_opt.dynamics.staged.StagedSetup`).
     """
+    setup = getattr(setup, "stack", setup)
     src = setup.source
     m, _ = _launch_mass_and_cg(setup, p)
     weight = m * G0
@@ -236,6 +238,7 @@ def option_overrides(setup, *, rail_length=None, inclination_deg=None, heading_d
     Returns ``{"parameters": {...}, "site_elevation": float or None}``.
     """
     import dataclasses
+    setup = getattr(setup, "stack", setup)              # a staged rocket: its stack on the pad
 
     from ironbark_opt.rocket.specs import BallastSpec, LaunchSpec
 

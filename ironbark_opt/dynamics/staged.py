@@ -96,6 +96,9 @@ class StagedSetup:
     ballast_mass_max = property(lambda self: self.sustainer.ballast_mass_max)
     ballast_x_range = property(lambda self: self.sustainer.ballast_x_range)
     airbrakes = None
+    body_length = property(lambda self: self.stack.body_length)   # the whole stack on the pad
+    nominal = property(lambda self: self.stack.nominal)
+    parachutes = property(lambda self: self.sustainer.parachutes)  # the answer is the sustainer's flight
 
     def nominal_parameters(self, **overrides) -> np.ndarray:
         return self.stack.nominal_parameters(**overrides)
