@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
+from ironbark_opt.cli_common import (apply_forecast, atmosphere_load_kwargs, atmosphere_options,
+                                     atmosphere_summary, emit, handle_errors, json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 _FILE_OUT = click.Path(dir_okay=False, writable=True)
@@ -21,16 +22,17 @@ def _common(func):
     ]
     for option in reversed(options):
         func = option(func)
-    return func
+    return atmosphere_options(func)
 
 
-def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None):
+def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None, weather=None):
     from ironbark_opt.vehicle import load_setup
 
-    kwargs = {"rail_exit": rail_exit, "table": table}
+    weather = weather or {}
+    kwargs = {"rail_exit": rail_exit, "table": table, **atmosphere_load_kwargs(**weather)}
     if config is not None:
         kwargs["config"] = config
-    setup = load_setup(rocket, **kwargs)
+    setup = apply_forecast(load_setup(rocket, **kwargs), **weather)
     overrides = {name: value for name, value in (("ballast_mass", ballast_kg), ("ballast_x", ballast_x_m))
                  if value is not None}
     return setup, overrides
@@ -52,12 +54,14 @@ def _agg():
 @click.option("--plot", "plot_path", type=_FILE_OUT, help="Write a tornado chart of the apogee changes.")
 @json_option
 @handle_errors
-def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m, csv_path,
-                        plot_path, as_json):
+def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m, atmosphere,
+                        atmosphere_time, forecast, site, time, csv_path, plot_path, as_json):
     """Exact (AD) sensitivities of apogee, apogee time and speeds for ROCKET."""
     from ironbark_opt.analysis.sensitivity import sensitivities
 
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
+    weather = dict(atmosphere=atmosphere, atmosphere_time=atmosphere_time, forecast=forecast, site=site,
+                   time=time)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, weather)
     if target is not None and "ballast_mass" in overrides:
         from ironbark_opt.errors import InputError
         raise InputError("--ballast and --target exclude each other: the target decides the ballast",
@@ -69,7 +73,9 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
         _agg()
         from ironbark_opt.analysis.plots import plot_sensitivities
         plot_sensitivities(sens, filename=plot_path)
-    emit(sens.to_dict(), as_json, sens.summary())
+    result = sens.to_dict()
+    result["atmosphere"], line = atmosphere_summary(setup)
+    emit(result, as_json, sens.summary() + "\n" + line)
 
 
 @click.command("montecarlo")
@@ -96,13 +102,15 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @json_option
 @handle_errors
 def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, table,
-                       ballast_kg, ballast_x_m, chunk, jit, executor, results_dir, progress, csv_path, hist_path,
-                       ellipse_path, as_json):
+                       ballast_kg, ballast_x_m, atmosphere, atmosphere_time, forecast, site, time, chunk, jit,
+                       executor, results_dir, progress, csv_path, hist_path, ellipse_path, as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
     from ironbark_opt.analysis.montecarlo import montecarlo
 
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table)
+    weather = dict(atmosphere=atmosphere, atmosphere_time=atmosphere_time, forecast=forecast, site=site,
+                   time=time)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, weather)
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit=jit, executor=executor, output=results_dir)
@@ -115,7 +123,9 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
             plot_apogee_histogram(disp, filename=hist_path)
         if ellipse_path:
             plot_landing_ellipse(disp, filename=ellipse_path)
-    emit(disp.to_dict(), as_json, disp.summary())
+    result = disp.to_dict()
+    result["atmosphere"], line = atmosphere_summary(setup)
+    emit(result, as_json, disp.summary() + "\n" + line)
 
 
 COMMANDS = [sensitivity_command, montecarlo_command]

@@ -5,7 +5,8 @@ import dataclasses
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
+from ironbark_opt.cli_common import (atmosphere_load_kwargs, atmosphere_options, atmosphere_summary, emit,
+                                     handle_errors, json_option, table_option)
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
@@ -37,9 +38,7 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
               help="Candidate motor: file, folder of files, or ThrustCurve.org name (repeatable).")
 @click.option("--objective", type=click.Choice(OBJECTIVES), default="least_ballast", show_default=True,
               help="How to rank feasible motors.")
-@click.option("--forecast", type=click.Choice(["rap", "gfs"]), help="Fly through a NOAA forecast profile.")
-@click.option("--site", help="Launch-site preset for the forecast (see 'ironbark weather sites').")
-@click.option("--time", help="Launch time for the forecast, ISO 8601 UTC.")
+@atmosphere_options
 @click.option("--min-rail-speed", type=float, help="Minimum rail-exit speed [m/s].")
 @click.option("--min-margin", type=float, help="Minimum static margin at rail exit [calibers].")
 @click.option("--max-ballast", type=float, help="Most ballast the bay holds [kg].")
@@ -55,7 +54,8 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
               help="Write the flight at the optimum (PNG/PDF/SVG).")
 @json_option
 @handle_errors
-def ballast_command(rocket, target, motors, objective, forecast, site, time, min_rail_speed, min_margin,
+def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_time, forecast, site, time,
+                    min_rail_speed, min_margin,
                     max_ballast, ballast_x, free_position, rail_exit, table, processes, executor, plot_path,
                     as_json):
     """Ballast (and motor) that put ROCKET's apogee on --target."""
@@ -63,7 +63,10 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
     from ironbark_opt.optimise.motor_choice import choose_motor
     from ironbark_opt.vehicle import load_setup
 
-    setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table), forecast, site, time)
+    weather = atmosphere_load_kwargs(atmosphere, atmosphere_time, forecast, site, time)
+    setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table, **weather),
+                                forecast, site, time)
+    flown, flown_line = atmosphere_summary(setup)
     kwargs = dict(mass_max=max_ballast, ballast_x=ballast_x, free_position=free_position,
                   min_rail_speed=min_rail_speed, min_margin=min_margin)
     if executor is not None and not motors:
@@ -72,7 +75,8 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
         if forecast is not None:
             processes = 1          # the forecast profile lives in this process only (an executor ships it)
         ranking = choose_motor(setup, motors, target, objective=objective, processes=processes,
-                               load_kwargs={"rail_exit": rail_exit, "table": table}, executor=executor,
+                               load_kwargs={"rail_exit": rail_exit, "table": table, **weather},
+                               executor=executor,
                                **kwargs)
         best = ranking.best or (ranking.solutions[0] if ranking.solutions else None)
         result = ranking.to_dict()
@@ -87,11 +91,14 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
                 if motor.designation == best.motor:
                     _plot(dataclasses.replace(setup, motor=motor), best, plot_path)
                     break
-        emit(result, as_json, ranking.summary())
+        result["atmosphere"] = flown
+        emit(result, as_json, ranking.summary() + "\n" + flown_line)
         return
     solution = solve_ballast(setup, target, **kwargs)
     _plot(setup, solution, plot_path)
-    emit(solution.to_dict(), as_json, solution.summary())
+    result = solution.to_dict()
+    result["atmosphere"] = flown
+    emit(result, as_json, solution.summary() + "\n" + flown_line)
 
 
 def _plot(setup, solution, path):

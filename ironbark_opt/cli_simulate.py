@@ -5,7 +5,8 @@ import math
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
+from ironbark_opt.cli_common import (apply_forecast, atmosphere_load_kwargs, atmosphere_options,
+                                     atmosphere_summary, emit, handle_errors, json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 
@@ -21,6 +22,7 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files).")
 @table_option
+@atmosphere_options
 @click.option("--descent/--no-descent", default=False, help="Continue to landing.")
 @click.option("--jit/--no-jit", default=False, help="Compile the model to C (cached on disk).")
 @click.option("--csv", "csv_path", type=click.Path(dir_okay=False, writable=True), help="Write the time series.")
@@ -29,17 +31,19 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @json_option
 @handle_errors
 def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevation_m, rail_exit, ballast_kg,
-                     ballast_x_m, config, table, descent, jit, csv_path, plot_path, as_json):
+                     ballast_x_m, config, table, atmosphere, atmosphere_time, forecast, site, time, descent, jit,
+                     csv_path, plot_path, as_json):
     """Simulate ROCKET (.toml or .ork) to apogee and print the summary."""
     import dataclasses
 
     from ironbark_opt.flight import simulate
     from ironbark_opt.vehicle import load_setup
 
-    kwargs = {"rail_exit": rail_exit, "table": table}
+    kwargs = {"rail_exit": rail_exit, "table": table,
+              **atmosphere_load_kwargs(atmosphere, atmosphere_time, forecast, site, time)}
     if config is not None:
         kwargs["config"] = config
-    setup = load_setup(rocket, **kwargs)
+    setup = apply_forecast(load_setup(rocket, **kwargs), forecast, site, time)
     if elevation_m is not None:
         setup = dataclasses.replace(setup, site_elevation=elevation_m)
     overrides = {}
@@ -60,7 +64,8 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
         plot_flight(flight, filename=plot_path)
     result = flight.to_dict()
     result["rocket"] = setup.name
-    emit(result, as_json, flight.summary())
+    result["atmosphere"], line = atmosphere_summary(setup)
+    emit(result, as_json, flight.summary() + "\n" + line)
 
 
 COMMANDS = [simulate_command]
