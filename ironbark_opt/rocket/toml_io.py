@@ -433,8 +433,10 @@ def _read_motor(rd: _Reader, d):
             ov[key] = (float(val[0]), float(val[1]))
         else:
             num = rd.number(ov_in, key, "motor.overrides")
-            if num <= 0 and key != "dry_cg" and key != "propellant_cg":
-                raise rd.error(f"must be > 0, got {num}", "motor.overrides", key)
+            # dry_mass = 0: the casing is counted in the rocket's mass (docs/rocket-toml.md).
+            if (num < 0 if key == "dry_mass" else num <= 0) and key not in ("dry_cg", "propellant_cg"):
+                raise rd.error(f"must be {'>= 0' if key == 'dry_mass' else '> 0'}, got {num}",
+                               "motor.overrides", key)
             ov[key] = num
     try:
         return MotorSpec(file=file, designation=des, nozzle_x=nozzle_x, overrides=ov)
