@@ -55,9 +55,12 @@ def test_weather_get_json_and_csv_fly_like_the_file(tmp_path):
                "--csv", tmp_path / "w.csv")
     assert got.exit_code == 0, got.output
     (tmp_path / "w.json").write_text(got.output)
+    saved = _run("weather", "get", "--model", "reanalysis", "--file", NC, "--lat", "47.213476", "--lon",
+                 "9.003336", "--elevation-m", "407", "--time", "2020-02-22T13:00Z", "--out", tmp_path / "o.json")
+    assert saved.exit_code == 0, saved.output
     ref = json.loads(_run("simulate", toml, "--atmosphere", NC, "--atmosphere-time", "2020-02-22T13:00Z",
                           "--json").output)["apogee_agl_m"]
-    for saved in ("w.json", "w.csv"):
+    for saved in ("w.json", "w.csv", "o.json"):
         res = _run("simulate", toml, "--atmosphere", tmp_path / saved, "--json")
         assert res.exit_code == 0, res.output
         apo = json.loads(res.output)["apogee_agl_m"]
