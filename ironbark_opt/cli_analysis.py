@@ -3,8 +3,9 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
-                                     json_option, table_option)
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
+                                     atmosphere_options, atmosphere_summary, atomic_write,
+                                     check_output_path, emit, handle_errors, json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 _FILE_OUT = click.Path(dir_okay=False, writable=True)
@@ -25,16 +26,18 @@ def _common(func):
     ]
     for option in reversed(options):
         func = option(func)
-    return func
+    return atmosphere_options(func)
 
 
-def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None, allow_unstable=False):
+def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None, allow_unstable=False,
+          weather=None):
     from ironbark_opt.vehicle import load_setup
 
-    kwargs = {"rail_exit": rail_exit, "table": table}
+    weather = weather or {}
+    kwargs = {"rail_exit": rail_exit, "table": table, **atmosphere_load_kwargs(**weather)}
     if config is not None:
         kwargs["config"] = config
-    setup = load_setup(rocket, **kwargs)
+    setup = apply_forecast(load_setup(rocket, **kwargs), **weather)
     from ironbark_opt.plausibility import check_flight_inputs, option_overrides
     overrides = option_overrides(setup, ballast_kg=ballast_kg, ballast_x_m=ballast_x_m,
                                  body_length=setup.body_length)["parameters"]
@@ -59,13 +62,17 @@ def _agg():
 @json_option
 @handle_errors
 def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast_kg, ballast_x_m,
-                        allow_unstable, csv_path, plot_path, as_json):
+                        allow_unstable, atmosphere, atmosphere_time, forecast, site, time, csv_path,
+                        plot_path, as_json):
     """Exact (AD) sensitivities of apogee, apogee time and speeds for ROCKET."""
     from ironbark_opt.analysis.sensitivity import sensitivities
 
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable)
+    weather = dict(atmosphere=atmosphere, atmosphere_time=atmosphere_time, forecast=forecast, site=site,
+                   time=time)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable,
+                             weather)
     if target is not None and "ballast_mass" in overrides:
         from ironbark_opt.errors import InputError
         raise InputError("--ballast and --target exclude each other: the target decides the ballast",
@@ -77,7 +84,9 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
         _agg()
         from ironbark_opt.analysis.plots import plot_sensitivities
         atomic_write(plot_path, lambda tmp: plot_sensitivities(sens, filename=tmp))
-    emit(sens.to_dict(), as_json, sens.summary())
+    result = sens.to_dict()
+    result["atmosphere"], line = atmosphere_summary(setup)
+    emit(result, as_json, sens.summary() + "\n" + line)
 
 
 @click.command("montecarlo")
@@ -107,8 +116,9 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @json_option
 @handle_errors
 def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, table,
-                       ballast_kg, ballast_x_m, allow_unstable, chunk, jit, executor, results_dir, progress,
-                       csv_path, hist_path, ellipse_path, calibration_path, as_json):
+                       ballast_kg, ballast_x_m, allow_unstable, atmosphere, atmosphere_time, forecast, site,
+                       time, chunk, jit, executor, results_dir, progress, csv_path, hist_path, ellipse_path,
+                       calibration_path, as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
     from ironbark_opt.analysis.montecarlo import montecarlo
@@ -120,7 +130,10 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     check_output_path(results_dir, "--results-dir", directory=True)
     if band_m is not None and not (band_m > 0 and band_m < float("inf")):
         raise InputError(f"must be > 0 m, got {band_m}", field="--band")
-    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable)
+    weather = dict(atmosphere=atmosphere, atmosphere_time=atmosphere_time, forecast=forecast, site=site,
+                   time=time)
+    setup, overrides = _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table, allow_unstable,
+                             weather)
     if calibration_path is not None:
         from ironbark_opt.telemetry.calibration_file import apply_calibration
         setup = apply_calibration(setup, calibration_path)
@@ -136,7 +149,9 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
             atomic_write(hist_path, lambda tmp: plot_apogee_histogram(disp, filename=tmp))
         if ellipse_path:
             atomic_write(ellipse_path, lambda tmp: plot_landing_ellipse(disp, filename=tmp))
-    emit(disp.to_dict(), as_json, disp.summary())
+    result = disp.to_dict()
+    result["atmosphere"], line = atmosphere_summary(setup)
+    emit(result, as_json, disp.summary() + "\n" + line)
 
 
 COMMANDS = [sensitivity_command, montecarlo_command]

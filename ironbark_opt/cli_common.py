@@ -157,3 +157,55 @@ def atomic_write(path, write) -> None:
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def atmosphere_options(func):
+    """The atmosphere options every flying command shares (one definition):
+    ``--atmosphere FILE [--atmosphere-time T]`` or ``--forecast rap|gfs --site
+    --time``; the command receives them as ``atmosphere, atmosphere_time,
+    forecast, site, time`` and hands them to :func:`apply_atmosphere`."""
+    options = [
+        click.option("--atmosphere", "atmosphere", type=click.Path(dir_okay=False),
+                     help="Fly this atmosphere file: a reanalysis netCDF (ERA5-style), a saved "
+                          "sounding, or the JSON/CSV 'ironbark weather get' writes (replaces "
+                          "the rocket file's [launch] atmosphere)."),
+        click.option("--atmosphere-time", "atmosphere_time", metavar="ISO",
+                     help="Launch time (ISO 8601 UTC) picking the record of a multi-time "
+                          "--atmosphere reanalysis file."),
+        click.option("--forecast", type=click.Choice(["rap", "gfs"]),
+                     help="Fly through a NOAA forecast profile (needs --site and --time)."),
+        click.option("--site", help="Launch-site preset for the forecast (see 'ironbark weather sites')."),
+        click.option("--time", help="Launch time for the forecast, ISO 8601 UTC."),
+    ]
+    for option in reversed(options):
+        func = option(func)
+    return func
+
+
+def atmosphere_load_kwargs(atmosphere=None, atmosphere_time=None, forecast=None, site=None,
+                           time=None) -> dict:
+    """Keyword arguments for ``load_setup`` from the shared atmosphere options
+    (``--atmosphere`` is read at the rocket file's site); checks their
+    combinations (``click.UsageError``, exit 2).  ``--forecast`` is applied
+    after loading with :func:`apply_forecast`."""
+    if atmosphere is not None and forecast is not None:
+        raise click.UsageError("give --atmosphere FILE or --forecast rap|gfs, not both")
+    if atmosphere_time is not None and atmosphere is None:
+        raise click.UsageError("--atmosphere-time needs --atmosphere FILE")
+    if atmosphere is None:
+        return {}
+    if site is not None or time is not None:
+        raise click.UsageError("--site/--time belong to --forecast; for a file give --atmosphere-time")
+    return {"atmosphere_file": atmosphere, "atmosphere_time": atmosphere_time}
+
+
+def apply_forecast(setup, forecast=None, site=None, time=None, **_file_options):
+    """``setup`` flying the ``--forecast`` profile (unchanged without one)."""
+    from ironbark_opt.cli_optimise import forecast_atmosphere
+    return forecast_atmosphere(setup, forecast, site, time)
+
+
+def atmosphere_summary(setup) -> tuple[dict, str]:
+    """(``--json`` entry, summary line) naming the atmosphere ``setup`` flies."""
+    from ironbark_opt.atmosphere.files import describe_flown, flown_line
+    return describe_flown(setup.atmosphere), flown_line(setup.atmosphere)

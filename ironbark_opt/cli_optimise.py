@@ -6,8 +6,9 @@ from pathlib import Path
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
-                                     json_option, table_option)
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, atmosphere_load_kwargs, atmosphere_options,
+                                     atmosphere_summary, atomic_write, check_output_path, emit,
+                                     handle_errors, json_option, table_option)
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
@@ -39,9 +40,7 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
               help="Candidate motor: file, folder of files, or ThrustCurve.org name (repeatable).")
 @click.option("--objective", type=click.Choice(OBJECTIVES), default="least_ballast", show_default=True,
               help="How to rank feasible motors.")
-@click.option("--forecast", type=click.Choice(["rap", "gfs"]), help="Fly through a NOAA forecast profile.")
-@click.option("--site", help="Launch-site preset for the forecast (see 'ironbark weather sites').")
-@click.option("--time", help="Launch time for the forecast, ISO 8601 UTC.")
+@atmosphere_options
 @click.option("--min-rail-speed", type=float, help="Minimum rail-exit speed [m/s].")
 @click.option("--min-margin", type=float, help="Minimum static margin at rail exit [calibers].")
 @click.option("--max-ballast", type=float, help="Most ballast the bay holds [kg].")
@@ -64,9 +63,9 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--allow-unstable", is_flag=True, help="Accept a rocket whose static margin is below zero.")
 @json_option
 @handle_errors
-def ballast_command(rocket, target, motors, objective, forecast, site, time, min_rail_speed, min_margin,
-                    max_ballast, ballast_x, free_position, rail_exit, solve_for, table, calibration_path,
-                    processes, executor, plot_path, allow_unstable, as_json):
+def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_time, forecast, site, time,
+                    min_rail_speed, min_margin, max_ballast, ballast_x, free_position, rail_exit, solve_for,
+                    table, calibration_path, processes, executor, plot_path, allow_unstable, as_json):
     """Ballast (and motor), or the air-brake deployment, that put ROCKET's apogee on --target."""
     from ironbark_opt.optimise.ballast import solve_ballast
     from ironbark_opt.optimise.motor_choice import choose_motor
@@ -93,7 +92,10 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
             raise InputError("motor file not found (a path, so not looked up on ThrustCurve.org)",
                              source=item, field="--motor")
     parse_target(target)
-    setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table), forecast, site, time)
+    weather = atmosphere_load_kwargs(atmosphere, atmosphere_time, forecast, site, time)
+    setup = forecast_atmosphere(load_setup(rocket, rail_exit=rail_exit, table=table, **weather),
+                                forecast, site, time)
+    flown, flown_line = atmosphere_summary(setup)
     if calibration_path is not None:
         from ironbark_opt.telemetry.calibration_file import apply_calibration
         setup = apply_calibration(setup, calibration_path)
@@ -105,7 +107,9 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
         from ironbark_opt.optimise.airbrakes import solve_airbrakes
         solution = solve_airbrakes(setup, target, variable=solve_for)
         _plot(setup, solution, plot_path)
-        emit(solution.to_dict(), as_json, solution.summary())
+        result = solution.to_dict()
+        result["atmosphere"] = flown
+        emit(result, as_json, solution.summary() + "\n" + flown_line)
         return
     kwargs = dict(mass_max=max_ballast, ballast_x=ballast_x, free_position=free_position,
                   min_rail_speed=min_rail_speed, min_margin=min_margin)
@@ -115,7 +119,8 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
         if forecast is not None:
             processes = 1          # the forecast profile lives in this process only (an executor ships it)
         ranking = choose_motor(setup, motors, target, objective=objective, processes=processes,
-                               load_kwargs={"rail_exit": rail_exit, "table": table}, executor=executor,
+                               load_kwargs={"rail_exit": rail_exit, "table": table, **weather},
+                               executor=executor,
                                **kwargs)
         best = ranking.best or (ranking.solutions[0] if ranking.solutions else None)
         result = ranking.to_dict()
@@ -132,8 +137,9 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
                 if motor.designation == best.motor:
                     _plot(dataclasses.replace(setup, motor=motor), best, plot_path)
                     break
+        result["atmosphere"] = flown
         if ranking.solutions or as_json:     # nothing solved: the failures are on stderr (and in JSON)
-            emit(result, as_json, ranking.summary())
+            emit(result, as_json, ranking.summary() + "\n" + flown_line)
         if not ranking.solutions:
             from ironbark_opt.errors import SolverError
             label, message = ranking.failures[0] if ranking.failures else ("?", "")
@@ -142,7 +148,9 @@ def ballast_command(rocket, target, motors, objective, forecast, site, time, min
         return
     solution = solve_ballast(setup, target, **kwargs)
     _plot(setup, solution, plot_path)
-    emit(solution.to_dict(), as_json, solution.summary())
+    result = solution.to_dict()
+    result["atmosphere"] = flown
+    emit(result, as_json, solution.summary() + "\n" + flown_line)
 
 
 def _plot(setup, solution, path):

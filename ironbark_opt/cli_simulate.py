@@ -3,8 +3,9 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
-                                     json_option, table_option)
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
+                                     atmosphere_options, atmosphere_summary, atomic_write,
+                                     check_output_path, emit, handle_errors, json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 
@@ -22,6 +23,7 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @table_option
 @click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
               help="Apply a calibration file (from 'ironbark calibrate --output').")
+@atmosphere_options
 @click.option("--descent/--no-descent", default=False, help="Continue to landing.")
 @click.option("--jit/--no-jit", default=None,
               help="Compile the model to C now / never (default: compiled when cached, else compiled in the background).")
@@ -32,8 +34,8 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
 @json_option
 @handle_errors
 def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevation_m, rail_exit, ballast_kg,
-                     ballast_x_m, config, table, calibration_path, descent, jit, csv_path, plot_path,
-                     allow_unstable, as_json):
+                     ballast_x_m, config, table, calibration_path, atmosphere, atmosphere_time, forecast,
+                     site, time, descent, jit, csv_path, plot_path, allow_unstable, as_json):
     """Simulate ROCKET (.toml or .ork) to apogee and print the summary."""
     import dataclasses
 
@@ -44,10 +46,11 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
 
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
-    kwargs = {"rail_exit": rail_exit, "table": table}
+    kwargs = {"rail_exit": rail_exit, "table": table,
+              **atmosphere_load_kwargs(atmosphere, atmosphere_time, forecast, site, time)}
     if config is not None:
         kwargs["config"] = config
-    setup = load_setup(rocket, **kwargs)
+    setup = apply_forecast(load_setup(rocket, **kwargs), forecast, site, time)
     if calibration_path is not None:
         from ironbark_opt.telemetry.calibration_file import apply_calibration
         setup = apply_calibration(setup, calibration_path)
@@ -72,7 +75,8 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
     result = flight.to_dict()
     result["rocket"] = setup.name
     result["recovery_devices"] = len(setup.parachutes)
-    emit(result, as_json, flight.summary())
+    result["atmosphere"], line = atmosphere_summary(setup)
+    emit(result, as_json, flight.summary() + "\n" + line)
 
 
 COMMANDS = [simulate_command]

@@ -82,11 +82,13 @@ def _summary(col: ProfileColumns, top_agl: float | None) -> str:
               help="Write the profile as CSV (unit-suffixed columns).")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False),
               help="Write temperature/wind vs altitude plots to this PNG.")
+@click.option("--out", "out_path", type=click.Path(dir_okay=False),
+              help="Save the profile to fly offline later (simulate --atmosphere FILE): .json or .csv.")
 @click.option("--offline", is_flag=True, help="Use only the on-disk cache (no network).")
 @json_option
 @handle_errors
 def get_cmd(model, site, lat_deg, lon_deg, elevation_m, time_iso, station, path, top_m,
-            csv_path, plot_path, offline, as_json):
+            csv_path, plot_path, out_path, offline, as_json):
     """Fetch a profile over a site and print it (optionally CSV, JSON, plot)."""
     from ironbark_opt.atmosphere.ncss import parse_iso
     from ironbark_opt.cli_common import PLOT_SUFFIXES, check_output_path
@@ -123,7 +125,19 @@ def get_cmd(model, site, lat_deg, lon_deg, elevation_m, time_iso, station, path,
                 raise InputError("give --file and --site (or --lat/--lon)", field="--file")
             col = read_reanalysis(path, latitude=lat, longitude=lon, time=time,
                                   ground_elevation=elev)
+    if out_path and not str(out_path).lower().endswith((".json", ".csv")):
+        raise InputError("--out FILE must end in .json or .csv", field="--out")
     result = col.to_dict()
+    if out_path:
+        if str(out_path).lower().endswith(".json"):
+            import json
+            from ironbark_opt.cli_common import _clean
+            text = json.dumps(_clean(result), indent=2)
+            with open(out_path, "w", encoding="utf-8") as fh:
+                fh.write(text)
+        else:
+            col.to_dataframe().to_csv(out_path, index=False)
+        result["out"] = str(out_path)
     if csv_path:
         col.to_dataframe().to_csv(csv_path, index=False)
         result["csv"] = str(csv_path)

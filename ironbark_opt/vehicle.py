@@ -109,7 +109,8 @@ def jet_area_of(motor) -> tuple[float, str]:
 
 
 def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
-                    pressure_correction: bool = True) -> FlightSetup:
+                    pressure_correction: bool = True, atmosphere_file=None,
+                    atmosphere_time=None) -> FlightSetup:
     """Assemble a :class:`FlightSetup` from a loaded :class:`RocketFile`.
 
     Parameters
@@ -119,6 +120,9 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
         See :func:`rail_exit_offset`.
     atmosphere : Atmosphere, optional
         Replaces the file's standard atmosphere (e.g. a forecast profile).
+    atmosphere_file, atmosphere_time : path-like, str, optional
+        An atmosphere file (and ISO 8601 UTC time) read at the file's site,
+        replacing ``[launch] atmosphere`` (see :mod:`ironbark_opt.atmosphere.files`).
     pressure_correction : bool
         Apply the ambient-pressure thrust correction when the motor's nozzle
         exit area is known.
@@ -136,6 +140,13 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                             re_transition=rf.aero.re_transition, jet_area=jet,
                             jet_area_source=jet_source)
     launch = rf.launch
+    if atmosphere_file is None and launch.atmosphere_file is not None:
+        atmosphere_file, atmosphere_time = launch.atmosphere_file, launch.atmosphere_time
+    if atmosphere is None and atmosphere_file is not None:
+        from ironbark_opt.atmosphere.files import load_atmosphere_file
+        atmosphere = load_atmosphere_file(atmosphere_file, time=atmosphere_time,
+                                          latitude=launch.latitude, longitude=launch.longitude,
+                                          ground_elevation=launch.site_elevation)
     if atmosphere is None:
         we, wn = wind_from_speed_direction(launch.wind_speed, launch.wind_from)
         atmosphere = ISA.from_site(launch.site_elevation, launch.site_temperature, launch.site_pressure,
@@ -161,7 +172,16 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                        nominal=nominal, parachutes=chutes, name=rocket.name,
                        ballast_mass_max=ballast.mass_max,
                        ballast_x_range=None if ballast.x_min is None else (ballast.x_min, ballast.x_max),
-                       source=str(rf.source), airbrakes=brakes, body_length=float(rocket.length()))
+                       source=str(rf.source), airbrakes=brakes, body_length=float(rocket.length()),
+                       gravity=_gravity_model(launch.gravity))
+
+
+def _gravity_model(value):
+    """``[launch] gravity`` [m/s^2] as a model (None: WGS-84 normal gravity)."""
+    if value is None:
+        return None
+    from ironbark_opt.atmosphere.gravity import ConstantGravity
+    return ConstantGravity(value)
 
 
 def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> FlightSetup:

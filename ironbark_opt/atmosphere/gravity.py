@@ -85,3 +85,23 @@ def gravity(h, latitude=None):
     # NIMA TR8350.2 eq. 4-3, second-order free-air (normal gravity) correction.
     first = 2.0 / WGS84_A * (1.0 + WGS84_F + WGS84_M - 2.0 * WGS84_F * s2)
     return gamma * (1.0 - first * h + 3.0 / WGS84_A ** 2 * h * h)
+
+
+class ConstantGravity:
+    """A gravity model that is one constant [m/s^2] at every height.
+
+    What RocketPy flies by default (``Environment(gravity=9.80665)``, or the
+    9.81 its example notebooks give); used when a rocket file sets
+    ``[launch] gravity``, so a comparison with such a flight flies the same
+    physics.  Picklable (executors ship setups to other processes).
+    """
+
+    def __init__(self, value: float):
+        self.value = float(value)
+
+    def __call__(self, h):
+        from ironbark_opt.atmosphere.base import constant_like
+        return constant_like(h, self.value)
+
+    def __repr__(self) -> str:
+        return f"ConstantGravity({self.value:g} m/s^2)"

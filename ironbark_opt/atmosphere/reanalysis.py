@@ -166,6 +166,25 @@ def _weights(axis: np.ndarray, x: float, what: str, path) -> list[tuple[int, flo
     return [(int(order[j]), 1.0 - w), (int(order[j + 1]), w)]
 
 
+def describe_times(times) -> str:
+    """The records' times as short text for messages (all of them, or the range)."""
+    if len(times) <= 8:
+        return ", ".join(f"{t:%Y-%m-%d %H:%M}Z" for t in times)
+    return (f"{len(times)} times from {times[0]:%Y-%m-%d %H:%M}Z to "
+            f"{times[-1]:%Y-%m-%d %H:%M}Z")
+
+
+def reanalysis_times(path: str | Path) -> list[datetime]:
+    """The UTC times of the records in an ERA5-style pressure-level file."""
+    path = Path(path)
+    vs = read_variables(path)
+    dims = _find(vs, "temperature", path).dims
+    for d in dims:
+        if d.lower() in _TIME_AXES and d in vs:
+            return _cf_times(vs[d], path)
+    raise InputError(f"no time axis among {dims}", source=path, field="time")
+
+
 def read_reanalysis(path: str | Path, *, latitude: float, longitude: float,
                     time: datetime | None = None, ground_elevation: float | None = None,
                     ) -> ProfileColumns:
@@ -229,8 +248,7 @@ def read_reanalysis(path: str | Path, *, latitude: float, longitude: float,
         wt = _weights(stamps, t_req.timestamp(), "time", path)
     except InputError:
         raise InputError(f"time {t_req:%Y-%m-%d %H:%M}Z outside the file "
-                         f"({times[0]:%Y-%m-%d %H:%M}Z to {times[-1]:%Y-%m-%d %H:%M}Z)",
-                         source=path, field="time") from None
+                         f"(it has {describe_times(times)})", source=path, field="time") from None
     wy = _weights(lats, lat_deg, "latitude_deg", path)
     wx = _weights(lons, lon_deg, "longitude_deg", path)
 

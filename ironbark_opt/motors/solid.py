@@ -133,7 +133,10 @@ class SolidMotor(Motor):
     propellant_mass : float [kg], optional
         Initial propellant mass; if None it is derived from ``grains``.
     dry_mass : float [kg]
-        Mass of the motor without propellant (> 0).
+        Mass of the motor without propellant (>= 0).  0 means the casing,
+        closures and nozzle are counted in the rocket's own mass (as
+        RocketPy's examples give some motors); the motor then adds only its
+        propellant, whose CG is the motor's CG.
     diameter : float [m]
     length : float [m]
     designation, manufacturer : str
@@ -185,7 +188,8 @@ class SolidMotor(Motor):
         t.flags.writeable = F.flags.writeable = False     # frozen like the dataclass
         object.__setattr__(self, "time", t)
         object.__setattr__(self, "_thrust_data", F)
-        for name in ("dry_mass", "diameter", "length", "reference_pressure"):
+        object.__setattr__(self, "dry_mass", _positive(self.dry_mass, "dry_mass", src, allow_zero=True))
+        for name in ("diameter", "length", "reference_pressure"):
             object.__setattr__(self, name, _positive(getattr(self, name), name, src))
         for name in ("dry_cg", "propellant_cg"):
             v = getattr(self, name)
@@ -356,7 +360,9 @@ class SolidMotor(Motor):
         mp = mp0 * (1.0 - impulse / self._total_impulse)
         xd, xp = self.dry_cg_value, self.propellant_cg_value
         m = md + mp
-        cg = (md * xd + mp * xp) / m
+        # Casing counted in the rocket (dry mass 0): the motor's CG is the
+        # propellant's, also after burnout (no 0/0 when the propellant is gone).
+        cg = xp + 0.0 * mp if md == 0.0 else (md * xd + mp * xp) / m
         if self.grains is not None:
             ip_t, ip_a = self.grains.inertia(mp, mp0)
         else:

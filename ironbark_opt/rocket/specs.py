@@ -112,6 +112,15 @@ class LaunchSpec:
     wind_speed : float [m/s] (default 0)
     wind_from : float [rad] meteorological: direction the wind blows from,
         clockwise from north (default 0)
+    atmosphere_file : Path or None
+        A sounding, ERA5-style reanalysis netCDF or saved profile
+        (:mod:`ironbark_opt.atmosphere.files`) flown instead of the ISA
+        through the site values; the file's wind replaces ``wind_speed``.
+    atmosphere_time : str or None
+        ISO 8601 UTC launch time picking the record of a multi-time file.
+    gravity : float [m/s^2] or None
+        A constant gravitational acceleration (e.g. RocketPy's 9.80665) instead
+        of WGS-84 normal gravity with latitude and height.
     """
 
     rail_length: float = 5.2
@@ -124,9 +133,14 @@ class LaunchSpec:
     site_pressure: float | None = None
     wind_speed: float = 0.0
     wind_from: float = 0.0
+    atmosphere_file: Path | None = None
+    atmosphere_time: str | None = None
+    gravity: float | None = None
 
     def __post_init__(self):
         s = object.__setattr__
+        if self.gravity is not None:
+            s(self, "gravity", v.positive(self.gravity, "gravity", "m/s^2"))
         s(self, "rail_length", v.positive(self.rail_length, "rail_length"))
         inc = v.number(self.inclination, "inclination")
         if not 0.0 < inc <= math.pi / 2:

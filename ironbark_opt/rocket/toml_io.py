@@ -65,7 +65,7 @@ AERO_KEYS = ("table", "drag_power_off", "drag_power_on", "surface_roughness", "f
              "re_transition")
 LAUNCH_KEYS = ("rail_length", "inclination_deg", "heading_deg", "site_elevation",
                "latitude_deg", "longitude_deg", "site_temperature", "site_pressure",
-               "wind_speed", "wind_from_deg")
+               "wind_speed", "wind_from_deg", "atmosphere", "gravity")
 RECOVERY_KEYS = ("name", "cd_area", "cd", "diameter", "deploy", "lag")
 BALLAST_KEYS = ("mass", "x", "x_min", "x_max", "mass_max")
 
@@ -456,8 +456,10 @@ def _read_motor(rd: _Reader, d):
             ov[key] = (float(val[0]), float(val[1]))
         else:
             num = rd.number(ov_in, key, "motor.overrides")
-            if num <= 0 and key != "dry_cg" and key != "propellant_cg":
-                raise rd.error(f"must be > 0, got {num}", "motor.overrides", key)
+            # dry_mass = 0: the casing is counted in the rocket's mass (docs/rocket-toml.md).
+            if (num < 0 if key == "dry_mass" else num <= 0) and key not in ("dry_cg", "propellant_cg"):
+                raise rd.error(f"must be {'>= 0' if key == 'dry_mass' else '> 0'}, got {num}",
+                               "motor.overrides", key)
             ov[key] = num
     try:
         return MotorSpec(file=file, designation=des, nozzle_x=nozzle_x, overrides=ov)
@@ -487,7 +489,11 @@ def _read_aero(rd: _Reader, d):
 def _read_launch(rd: _Reader, d):
     rd.check_keys(d, LAUNCH_KEYS, "launch")
     kw = {}
+    if "atmosphere" in d:
+        kw["atmosphere_file"], kw["atmosphere_time"] = _read_atmosphere(rd, d["atmosphere"])
     for key in d:
+        if key == "atmosphere":
+            continue
         val = rd.number(d, key, "launch")
         if key.endswith("_deg"):
             kw[key[:-4].replace("_deg", "")] = math.radians(val)
@@ -497,6 +503,32 @@ def _read_launch(rd: _Reader, d):
         return LaunchSpec(**kw)
     except InputError as exc:
         raise rd.wrap(exc, "launch", 0, "launch", d) from None
+
+
+def _read_atmosphere(rd: _Reader, value):
+    """``atmosphere = "file"`` or ``{file = "...", time = "ISO 8601 UTC"}``."""
+    if isinstance(value, str):
+        value = {"file": value}
+    if not isinstance(value, dict):
+        raise rd.error('expected a file path or {file = "...", time = "2020-02-22T13:00Z"}',
+                       "launch", "atmosphere")
+    for key in value:
+        if key not in ("file", "time"):
+            raise rd.error(f"unknown key '{key}' in atmosphere; accepted keys: file, time",
+                           "launch", "atmosphere", field="launch.atmosphere." + str(key))
+    path = rd.file(value, "file", "launch", required=True)
+    time = value.get("time")
+    if time is not None:
+        from ironbark_opt.atmosphere.ncss import parse_iso
+        if not isinstance(time, str):
+            time = time.isoformat() if hasattr(time, "isoformat") else time
+        try:
+            parse_iso(str(time))
+        except InputError as exc:
+            raise rd.error(exc.message + " (expected ISO 8601 UTC, e.g. 2020-02-22T13:00Z)",
+                           "launch", "atmosphere", field="launch.atmosphere.time") from None
+        time = str(time)
+    return path, time
 
 
 def _read_recovery(rd: _Reader, items):

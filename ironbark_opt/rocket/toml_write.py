@@ -143,7 +143,11 @@ def to_toml(rf, folder=None) -> str:
                                  "site_temperature": L.site_temperature,
                                  "site_pressure": L.site_pressure,
                                  "wind_speed": L.wind_speed,
-                                 "wind_from_deg": deg(L.wind_from)})
+                                 "wind_from_deg": deg(L.wind_from),
+                                 "gravity": L.gravity})
+    if L.atmosphere_file is not None:
+        when = "" if L.atmosphere_time is None else f", time = {_value(L.atmosphere_time)}"
+        lines.insert(len(lines) - 1, f"atmosphere = {{file = {_value(_path(L.atmosphere_file, folder))}{when}}}")
     for rec in rf.recovery:
         lines += _table("[[recovery]]", {"name": rec.name, "cd_area": rec.cd_area,
                                          "deploy": rec.deploy, "lag": rec.lag})

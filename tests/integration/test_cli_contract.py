@@ -12,8 +12,8 @@ from ironbark_opt.cli import main
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = str(ROOT / "examples/calisto/calisto.toml")
 #: keys without a unit suffix that are dimensionless or text by nature
-UNITLESS = {"max_mach", "rocket", "motor", "feasible", "status", "active", "parameters", "target", "objective",
-            "candidates", "failures", "iterations", "recovery_devices"}
+UNITLESS = {"max_mach", "rocket", "motor", "atmosphere", "feasible", "status", "active", "parameters", "target",
+            "objective", "candidates", "failures", "iterations", "recovery_devices"}
 UNIT_SUFFIXES = ("_m", "_s", "_kg", "_mps", "_mps2", "_Pa", "_cal", "_N", "_Ns", "_K", "_deg", "_rad", "_kgm2")
 
 
