@@ -201,6 +201,8 @@ def atmosphere_load_kwargs(atmosphere=None, atmosphere_time=None, forecast=None,
 
 def apply_forecast(setup, forecast=None, site=None, time=None, **_file_options):
     """``setup`` flying the ``--forecast`` profile (unchanged without one)."""
+    if forecast is None:
+        return setup
     from ironbark_opt.cli_optimise import forecast_atmosphere
     return forecast_atmosphere(setup, forecast, site, time)
 

@@ -53,11 +53,16 @@ def _warn(message: str) -> None:
     warnings.warn(message, PlausibilityWarning, stacklevel=3)
 
 
-def check_inertia(inertia, *, source=None, field="inertia", names=("I_axial", "I_transverse")) -> None:
-    """Realisable inertia tensor [kg m^2]: symmetric, positive definite, triangle inequality."""
+def check_inertia(inertia, *, source=None, field="inertia", names=("I_axial", "I_transverse"),
+                  allow_point_mass: bool = False) -> None:
+    """Realisable inertia tensor [kg m^2]: symmetric, positive definite, triangle inequality.
+    ``allow_point_mass``: (0, 0) is accepted (a point mass, e.g. a motor casing counted
+    in the rocket's mass)."""
     I = np.asarray(inertia, dtype=float)
     if I.shape == (2,):                       # (I_transverse, I_axial)
         it, ia = float(I[0]), float(I[1])
+        if allow_point_mass and it == 0.0 and ia == 0.0:
+            return
         if not (np.isfinite(it) and it > 0.0):
             raise InputError(f"{names[1]} must be > 0 kg m^2, got {it:g}", source=source, field=names[1])
         if not (np.isfinite(ia) and ia > 0.0):
@@ -156,6 +161,8 @@ def check_motor(motor, file_motor, spec, body_length: float, *, source=None) -> 
                   f"{file_motor.propellant_mass_initial:.4g} kg by {100 * (ratio - 1):+.0f} %")
     length = getattr(motor, "length", None)
     for name in ("dry_cg", "propellant_cg"):
+        if name == "dry_cg" and float(getattr(motor, "dry_mass", 1.0)) == 0.0:
+            continue                  # no casing mass (counted in the rocket): its CG is unused
         val = getattr(motor, name, None)
         if val is not None and length and not -0.1 * length <= float(val) <= 1.1 * length:
             raise InputError(f"{name} = {float(val):g} m is outside the motor (0 to {length:.4g} m "
@@ -163,7 +170,8 @@ def check_motor(motor, file_motor, spec, body_length: float, *, source=None) -> 
     di = getattr(motor, "dry_inertia", None)
     if di is not None:
         check_inertia(tuple(di), source=source, field=fld + "dry_inertia",
-                      names=(fld + "dry_inertia (axial)", fld + "dry_inertia (transverse)"))
+                      names=(fld + "dry_inertia (axial)", fld + "dry_inertia (transverse)"),
+                      allow_point_mass=True)
     if spec is not None and spec.nozzle_x > 1.1 * body_length:
         raise InputError(f"nozzle_x = {spec.nozzle_x:g} m is aft of the body's end ({body_length:.4g} m)",
                          source=source, field="motor.nozzle_x")
