@@ -177,11 +177,19 @@ class FinGeometry:
     def sharpened(self, wedge: float) -> "FinGeometry":
         """A blunt (square, rounded) leading edge replaced by a wedge ``wedge``
         fin thicknesses long (the section becomes a hexagon with a square
-        trailing edge); other sections unchanged.  The wedge's panels carry no
+        trailing edge); a round-nosed airfoil likewise, with a sharp trailing
+        edge bevelled over the aft 70 % of the mean chord; other sections
+        unchanged.  The wedge's panels carry no
         axial force: linear supersonic theory cannot solve a blunt edge (it is
         superinclined), so its drag is modelled separately (panair.sweep)."""
-        if self.section not in ("square", "rounded") or wedge <= 0:
+        if self.section not in ("square", "rounded", "airfoil") or wedge <= 0:
             return self
+        if self.section == "airfoil":
+            # a round-nosed NACA 00xx section: the same leading-edge wedge, and a sharp
+            # trailing edge bevelled from the maximum thickness at 30 % of the mean chord
+            mean_chord = 0.5 * (float(self.chord_at(0.0)) + float(self.chord_at(1.0)))
+            return replace(self, section="double_wedge", le_bevel=wedge * self.thickness,
+                           te_bevel=0.7 * mean_chord, blunt_leading_edge=True)
         return replace(self, section="double_wedge", le_bevel=wedge * self.thickness,
                        te_bevel=0.0, blunt_leading_edge=True)
 

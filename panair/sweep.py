@@ -108,7 +108,7 @@ def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.nda
     m = np.asarray(mach, float)
     ca = np.zeros_like(m)
     for f in geometry.fins:
-        if f.section not in ("square", "rounded"):
+        if f.section not in ("square", "rounded", "airfoil"):
             continue
         sweep = math.atan2(float(f.le_at(1.0)), f.span)
         ca += (leading_edge_cd(m, f.section) * math.cos(sweep) ** 2
@@ -365,7 +365,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     # blunt fin leading edges: meshed as wedges without axial force where linear
     # theory cannot solve them (supersonic meshes); their drag is Niskanen's
     sharpened = [float(m) for m in builtin_all if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0
-                 and any(f.section in ("square", "rounded") for f in geometry.fins)]
+                 and any(f.section in ("square", "rounded", "airfoil") for f in geometry.fins)]
     for m in sharpened:
         results[m] = results[m].copy()
         results[m][:, 0] += blunt_leading_edge_ca(geometry, m, sref)

@@ -28,6 +28,8 @@ GOAL_MEDIAN, GOAL_MAX = 3.0, 6.0        # [%]
 
 
 def _apogee(path, table=None):
+    """Apogee AGL [m]; the geometry files fly the flight's own weather file and
+    RocketPy's constant gravity, as the team-curve files do."""
     from ironbark_opt import load_setup, simulate
     setup = load_setup(path, table=table) if table is not None else load_setup(path)
     return simulate(setup).summary_values["apogee_agl_m"]
@@ -48,7 +50,7 @@ def flights(tmp_path_factory):
         ours = _apogee(geo, table=str(stem) + ".csv")
         team = _apogee(DATA / name / "rocket.toml") if (DATA / name / "rocket.toml").exists() \
             else math.nan
-        out[name] = (ours, team, table.metadata)
+        out[name] = (ours, team, table.metadata, table)
     return out
 
 
@@ -56,7 +58,7 @@ def flights(tmp_path_factory):
 def test_five_flights_on_tables_from_geometry(flights):
     errs = []
     print("\nflight       measured   geometry table  err %    team curve  err %   M_cr")
-    for name, (ours, team, md) in flights.items():
+    for name, (ours, team, md, _) in flights.items():
         meas = MEASURED[name]
         e = 100 * (ours / meas - 1)
         et = 100 * (team / meas - 1)
@@ -67,13 +69,17 @@ def test_five_flights_on_tables_from_geometry(flights):
     met = med <= GOAL_MEDIAN and worst <= GOAL_MAX
     print(f"median |error| {med:.2f} % (goal {GOAL_MEDIAN}), max {worst:.2f} % (goal {GOAL_MAX})"
           f" -> {'met' if met else 'NOT MET'}")
-    # measured state of this commit (flown on ISA through the pad conditions: the flights'
-    # weather files are not flown here); a regression beyond it fails
-    assert med <= 5.0 and worst <= 10.0
+    # measured state of this commit (session 4, each flight on its own weather file:
+    # 0.00, +8.60, -1.30, -3.63, -1.09 %; median 1.30 %, NDRT 2020 over the 6 % goal);
+    # a regression beyond it fails
+    assert med <= 3.0 and worst <= 10.0
 
 
 @pytest.mark.slow
 def test_tables_have_no_zero_lift_thrust(flights):
     """Pressure plus base drag at zero angle of attack is never a thrust, at any Mach."""
-    for name, (_, _, md) in flights.items():
+    for name, (_, _, md, table) in flights.items():
         assert md["mach_solved_builtin"][-1] >= 2.0, name          # built to Mach 2
+        zero_lift = table.values("CA_pressure")[:, 0] + table.values("CA_base")[:, 0]
+        print(f"{name}: min zero-lift pressure + base CA {zero_lift.min():+.4f}")
+        assert np.all(zero_lift >= 0.0), name
