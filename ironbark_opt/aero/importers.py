@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import csv
 import math
+import io
 import re
 import warnings
 from pathlib import Path
@@ -46,6 +47,18 @@ def _norm(name: str) -> str:
     return base + (unit.group(1).lower() if unit else "")
 
 
+def _decoded_text(path) -> str:
+    """The file's text (UTF-8, a byte-order mark dropped); a binary file or a directory
+    is an InputError naming the file."""
+    try:
+        return path.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"not a UTF-8 text file (byte {exc.start}); expected a CSV of Mach and Cd",
+                         source=path) from None
+    except IsADirectoryError:
+        raise InputError("is a directory, expected a CSV file", source=path) from None
+
+
 def _read_numeric_csv(path):
     """-> (header list or None, header line, [(lineno, [float, ...])]).
 
@@ -56,15 +69,7 @@ def _read_numeric_csv(path):
     if not path.exists():
         raise InputError("file not found", source=path)
     header, header_line, rows, last_comment = None, None, [], None
-    try:
-        text = path.read_bytes().decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not a UTF-8 text file (byte {exc.start}); expected a CSV of Mach and Cd",
-                         source=path) from None
-    except IsADirectoryError:
-        raise InputError("is a directory, expected a CSV file", source=path) from None
-    import io
-    with io.StringIO(text, newline="") as fh:
+    with io.StringIO(_decoded_text(path), newline="") as fh:
         for lineno, rec in enumerate(csv.reader(fh), start=1):
             rec = [f.strip() for f in rec]
             while rec and rec[-1] == "":
@@ -103,15 +108,7 @@ def _read_text_csv(path):
     if not path.exists():
         raise InputError("file not found", source=path)
     header, hline, rows = None, None, []
-    try:
-        text = path.read_bytes().decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"not a UTF-8 text file (byte {exc.start}); expected a CSV of Mach and Cd",
-                         source=path) from None
-    except IsADirectoryError:
-        raise InputError("is a directory, expected a CSV file", source=path) from None
-    import io
-    with io.StringIO(text, newline="") as fh:
+    with io.StringIO(_decoded_text(path), newline="") as fh:
         for lineno, rec in enumerate(csv.reader(fh), start=1):
             rec = [f.strip() for f in rec]
             if not any(rec) or rec[0].startswith("#"):
