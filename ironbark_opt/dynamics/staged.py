@@ -104,11 +104,16 @@ class StagedSetup:
         return self.stack.nominal_parameters(**overrides)
 
     def __getattr__(self, name):
-        if name.startswith("__"):
-            raise AttributeError(name)
-        raise InputError(f"'{name}' is not available for staged rockets yet (they fly simulate, ballast, "
-                         "sensitivity and montecarlo to the sustainer's apogee; no descent, JIT or cluster)",
-                         field="stages")
+        return _not_for_staged(name)
+
+
+def _not_for_staged(name):
+    """The one refusal of what staged rockets do not have yet (``__getattr__`` of both classes)."""
+    if name.startswith("__"):
+        raise AttributeError(name)
+    raise InputError(f"'{name}' is not available for staged rockets yet (they fly simulate, ballast, "
+                     "sensitivity and montecarlo to the sustainer's apogee; no descent, JIT or cluster)",
+                     field="stages")
 
 
 class StagedFlightModel:
@@ -140,12 +145,8 @@ class StagedFlightModel:
                       "stack_coast": phase_trajectory(self._step["stack_coast"], self.n_stack_coast, "traj_stc")}
 
     def __getattr__(self, name):
-        if name.startswith("__"):
-            raise AttributeError(name)
-        # Anything of FlightModel not built for staged rockets (ballast, AD, batches).
-        raise InputError(f"'{name}' is not available for staged rockets yet (they fly simulate, ballast, "
-                         "sensitivity and montecarlo to the sustainer's apogee; no descent, JIT or cluster)",
-                         field="stages")
+        # anything of FlightSetup / FlightModel not built for staged rockets (ballast, AD, batches)
+        return _not_for_staged(name)
 
     # ------------------------------------------------------------------ descents
     def _down_functions(self, key: str) -> dict:
