@@ -18,7 +18,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.cli_common import check_output_path, emit, handle_errors, json_option
 from ironbark_opt.errors import InputError
 
 
@@ -63,8 +63,6 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     """Build the AeroTable of ROCKET (a rocket TOML or OpenRocket .ork file)."""
     from ironbark_opt.vehicle import load_rocket_geometry
     from panair.rocket_table import default_mach_grid, rocket_table
-
-    from ironbark_opt.cli_common import check_output_path
 
     mach_v = default_mach_grid() if mach is None else _floats(mach, "--mach")
     alpha_v = _floats(alpha_deg, "--alpha-deg")
@@ -127,7 +125,7 @@ def plot(table, out, as_json):
     import matplotlib.pyplot as plt
 
     from ironbark_opt.aero.table import AeroTable
-    from ironbark_opt.cli_common import PLOT_SUFFIXES, atomic_write, check_output_path
+    from ironbark_opt.cli_common import PLOT_SUFFIXES, atomic_write
     out = Path(out) if out else Path(table).with_suffix(".png")
     check_output_path(out, "--out", PLOT_SUFFIXES)
     t = AeroTable.load(table)
