@@ -256,16 +256,33 @@ def lift_geometry(rocket) -> LiftGeometry:
     return LiftGeometry(tuple(bodies), tuple(fins), plan_area, plan_moment / plan_area if plan_area else 0.0)
 
 
+def _own_roughness(component, default: float) -> float:
+    """A component's own finish [m] (``roughness``), else ``default`` [m]."""
+    own = getattr(component, "roughness", None)
+    return default if own is None else float(own)
+
+
 def friction_components(rocket, roughness: float) -> list[FrictionComponent]:
-    """Skin-friction components: the whole body as one run, each fin set."""
+    """Skin-friction components: the body as one boundary-layer run (Reynolds number
+    on the whole length), its wetted area split by surface finish, and each fin set.
+
+    ``roughness`` [m] is the rocket's default finish; a component's own ``roughness``
+    replaces it for its wetted area, as OpenRocket evaluates the roughness-limited
+    skin friction per component with its finish over the rocket's length (Niskanen
+    2013, sec. 3.4.1, eq. 3.79-3.80)."""
     bodies = rocket.body_components()
     length = rocket.length()
-    wetted = sum(c.wetted_area() for c in bodies)
-    comps = [FrictionComponent.body("body", length, 2 * rocket.max_radius(), wetted_area=wetted,
-                                    roughness=roughness)]
+    by_finish: dict[float, float] = {}
+    for c in bodies:
+        k = _own_roughness(c, roughness)
+        by_finish[k] = by_finish.get(k, 0.0) + c.wetted_area()
+    comps = [FrictionComponent.body("body" if len(by_finish) == 1 else f"body ({k * 1e6:g} um)",
+                                    length, 2 * rocket.max_radius(), wetted_area=area,
+                                    roughness=k)
+             for k, area in sorted(by_finish.items()) if area > 0]
     for fs in rocket.fin_sets():
         comps.append(FrictionComponent.fins(fs.name, fs.wetted_area(), fs.mean_aerodynamic_chord(),
-                                            fs.thickness, roughness=roughness))
+                                            fs.thickness, roughness=_own_roughness(fs, roughness)))
     return comps
 
 

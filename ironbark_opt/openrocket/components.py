@@ -20,6 +20,7 @@ import math
 from dataclasses import dataclass, field
 
 from ironbark_opt.openrocket.xmlread import Element
+from ironbark_opt.rocket.materials import FINISHES, ORK_FINISHES
 
 BODY = ("nosecone", "bodytube", "transition")
 FINS = ("trapezoidfinset", "ellipticalfinset", "freeformfinset")
@@ -187,10 +188,22 @@ def _angle(el, tag):
     return math.radians(el.number(tag, 0.0))
 
 
+def _finish(el: Element) -> float | None:
+    """Roughness height [m] of the component's ``<finish>`` (OpenRocket's finishes), or
+    None when the element has none (OpenRocket's default then applies: regular paint)."""
+    name = (el.text("finish") or "").strip().lower()
+    if not name:
+        return None
+    if name not in ORK_FINISHES:
+        raise el.error(f"unknown surface finish {name!r}; expected one of "
+                       f"{', '.join(ORK_FINISHES)}", "finish")
+    return FINISHES[ORK_FINISHES[name]]
+
+
 def parse_geometry(el: Element) -> tuple[dict, float]:
     """Geometry of one component and its positioning length [m]."""
     k = el.tag
-    g: dict = {}
+    g: dict = {"roughness": _finish(el)}
     if k in ("nosecone", "transition"):
         g["length"] = el.number("length", required=True, minimum=0.0)
         g["shape"] = (el.text("shape") or "conical").lower()

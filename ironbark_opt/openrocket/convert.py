@@ -65,7 +65,8 @@ def body_component(comp: OrkComponent, *, with_mass: bool = False):
     if not filled and thick >= r_max > 0.0:
         filled = True
     common = dict(length=g["length"], x=comp.x, name=comp.name, density=density,
-                  filled=filled, thickness=(thick if (density is not None and not filled) else None))
+                  filled=filled, thickness=(thick if (density is not None and not filled) else None),
+                  roughness=g.get("roughness"))
     if g["length"] <= 0.0:
         raise comp.element.error(f"'{comp.name}' has length {g['length']} m; expected > 0", "length")
     try:
@@ -92,7 +93,8 @@ def fin_set(comp: OrkComponent, *, with_density: float | None = None):
                          else _SECTIONS.get(g["section"], "square"))
     thickness = g["thickness"] if g["thickness"] > 0 else 1e-6
     common = dict(count=g["count"], x=comp.x, thickness=thickness, cant=g["cant"],
-                  section=section, density=with_density, name=comp.name)
+                  section=section, density=with_density, name=comp.name,
+                  roughness=g.get("roughness"))
     try:
         if comp.kind == "trapezoidfinset":
             return TrapezoidalFins(root_chord=g["root_chord"], tip_chord=g["tip_chord"],

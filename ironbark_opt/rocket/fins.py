@@ -53,6 +53,9 @@ class FinSet(abc.ABC):
     mass : float [kg] or None
         Mass override of the whole set.
     name : str
+    roughness : float [m] or None
+        Surface roughness height of the fins (their finish); None: the rocket's
+        ``[aero] surface_roughness``.
     """
 
     count: int = 4
@@ -63,6 +66,7 @@ class FinSet(abc.ABC):
     density: float | None = None
     mass: float | None = None
     name: str = "fins"
+    roughness: float | None = None
 
     def _check_common(self) -> None:
         if isinstance(self.count, bool) or not isinstance(self.count, (int, np.integer)) \
@@ -81,7 +85,8 @@ class FinSet(abc.ABC):
         v.set_fields(self, count=int(self.count), x=v.nonnegative(self.x, "x"),
                      thickness=v.positive(self.thickness, "thickness"), cant=cant,
                      density=v.optional(v.positive, self.density, "density", "kg/m^3"),
-                     mass=v.optional(v.nonnegative, self.mass, "mass", "kg"))
+                     mass=v.optional(v.nonnegative, self.mass, "mass", "kg"),
+                     roughness=v.optional(v.nonnegative, self.roughness, "surface_roughness", "m"))
 
     # -- planform (subclasses) ------------------------------------------------------------
     @abc.abstractmethod

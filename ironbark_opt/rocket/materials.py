@@ -40,10 +40,24 @@ _ALIASES = {"aluminum": "aluminium", "carbon_fiber": "carbon_fibre",
 #: finish name -> roughness height [m] (OpenRocket ExternalComponent.Finish)
 FINISHES: dict[str, float] = {
     "rough": 500e-6,
+    "rough_unfinished": 250e-6,
     "unfinished": 150e-6,
     "regular_paint": 60e-6,
     "smooth_paint": 20e-6,
+    "optimum_paint": 5e-6,
     "polished": 2e-6,
+    "finish_polished": 0.5e-6,
+    "mirror": 0.0,
+}
+"""Roughness height [m] of OpenRocket's named surface finishes (OpenRocket
+``ExternalComponent.Finish``, 23.09; Niskanen 2013 table 3.2 and Hoerner,
+Fluid-Dynamic Drag, ch. 2 for the values)."""
+
+#: OpenRocket's ``<finish>`` element values -> our finish names
+ORK_FINISHES: dict[str, str] = {
+    "rough": "rough", "roughunfinished": "rough_unfinished", "unfinished": "unfinished",
+    "normal": "regular_paint", "smooth": "smooth_paint", "optimum": "optimum_paint",
+    "polished": "polished", "finishpolished": "finish_polished", "mirror": "mirror",
 }
 
 #: default finish of every surface (regular paint, 60 um)

@@ -53,6 +53,9 @@ class BodyOfRevolution(abc.ABC):
     mass : float [kg] or None
         Mass override: scales the built-up distribution to this mass.
     name : str
+    roughness : float [m] or None
+        Surface roughness height of this component (its finish); None: the
+        rocket's ``[aero] surface_roughness``.
     """
 
     length: float
@@ -62,6 +65,7 @@ class BodyOfRevolution(abc.ABC):
     density: float | None = None
     mass: float | None = None
     name: str = ""
+    roughness: float | None = None
 
     def _check_common(self) -> None:
         v.set_fields(self, length=v.positive(self.length, "length"),
@@ -69,6 +73,7 @@ class BodyOfRevolution(abc.ABC):
                      thickness=v.optional(v.positive, self.thickness, "thickness"),
                      density=v.optional(v.positive, self.density, "density", "kg/m^3"),
                      mass=v.optional(v.nonnegative, self.mass, "mass", "kg"),
+                     roughness=v.optional(v.nonnegative, self.roughness, "surface_roughness", "m"),
                      filled=bool(self.filled))
         if self.mass is not None and self.density is None:
             raise InputError("a mass override scales the built-up distribution and needs a "

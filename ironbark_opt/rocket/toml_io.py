@@ -31,9 +31,10 @@ MAX_MAGNITUDE = 1e9
 TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart")
 ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
-_BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass")
+_BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass",
+         "finish", "surface_roughness")
 _FINS = ("type", "name", "x", "count", "thickness", "cant_deg", "section", "le_bevel",
-         "te_bevel", "material", "density", "mass")
+         "te_bevel", "material", "density", "mass", "finish", "surface_roughness")
 COMPONENT_KEYS = {
     "nose_cone": _BODY + ("shape", "radius", "shape_parameter", "ogive_radius"),
     "body_tube": _BODY + ("radius",),
@@ -363,7 +364,7 @@ def _read_component(rd: _Reader, d, i, prev):
     kw = {}
     for key, val in d.items():
         if key in ("type", "material", "cant_deg", "sweep_angle_deg", "section", "le_bevel",
-                   "te_bevel"):
+                   "te_bevel", "finish", "surface_roughness"):
             continue
         if key in ("name", "shape"):
             if not isinstance(val, str):
@@ -389,6 +390,8 @@ def _read_component(rd: _Reader, d, i, prev):
         dens = rd.density(d, "component", i, label)
         if dens is not None:
             kw["density"] = dens
+    if "finish" in d or "surface_roughness" in d:
+        kw["roughness"] = _component_roughness(rd, d, i, label)
     if kind in ("nose_cone", "body_tube", "transition") and "x" not in d:
         kw["x"] = 0.0 if prev is None else prev.x_end
     if kind == "body_tube" and "radius" not in d and prev is not None:
@@ -417,6 +420,19 @@ def _read_component(rd: _Reader, d, i, prev):
         return cls(**kw)
     except InputError as exc:
         raise rd.wrap(exc, "component", i, label, d) from None
+
+
+def _component_roughness(rd: _Reader, d, i, label) -> float:
+    """A component's own ``finish`` (named) or ``surface_roughness`` [m]."""
+    if "finish" in d:
+        if "surface_roughness" in d:
+            raise rd.error("give finish or surface_roughness, not both", "component", "finish",
+                           i, field=f"{label}.finish")
+        try:
+            return finish_roughness(d["finish"])
+        except InputError as exc:
+            raise rd.error(exc.message, "component", "finish", i, field=f"{label}.finish") from None
+    return rd.number(d, "surface_roughness", "component", i, label)
 
 
 def _read_motor(rd: _Reader, d):
