@@ -48,23 +48,16 @@ Numeric-only.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
+from ironbark_opt.aero.compressibility import (LOCK_MACH_MAX, LOCK_OFFSET, MACH_CR_MAX,
+                                                korn_critical_mach, lock_rise)
+
 GAMMA = 1.4
-#: Korn's technology factor for conventional (non-supercritical) sections (Mason ch. 7)
-KORN_KAPPA = 0.87
-#: Lock's law: M_dd - M_cr = (0.1 / 80)^(1/3) (dCd/dM = 0.1 at M_dd with dCd = 20 (M - M_cr)^4)
-LOCK_OFFSET = (0.1 / 80.0) ** (1.0 / 3.0)
 #: Mach number of the sonic anchor of the fairing [-]
 MACH_SONIC = 1.0
-#: Lock's law is followed at most to this Mach number, then faired to the sonic value [-]
-LOCK_MACH_MAX = 0.95
-#: Largest critical Mach number used (the fairing needs room below Mach 1) [-]
-MACH_CR_MAX = 0.95
 
 __all__ = ["cp_sonic", "karman_tsien", "body_critical_mach", "fin_critical_mach",
            "zero_lift_pressure", "LOCK_OFFSET"]
@@ -117,13 +110,8 @@ def fin_critical_mach(fin) -> float:
     t/c is the thickness over the mean geometric chord; the sweep is that of
     the line joining root and tip mid-chords.
     """
-    root, tip = float(fin.chord_at(0.0)), float(fin.chord_at(1.0))
-    mean_chord = 0.5 * (root + tip)
-    tc = fin.thickness / max(mean_chord, 1e-300)
-    tan_half = (float(fin.le_at(1.0)) + 0.5 * tip - 0.5 * root) / fin.span
-    c = math.cos(math.atan(tan_half))
-    m_dd = KORN_KAPPA / c - tc / c ** 2                 # Korn / Mason eq. 7-1, c_l = 0
-    return float(min(m_dd - LOCK_OFFSET, MACH_CR_MAX))
+    return korn_critical_mach(float(fin.chord_at(0.0)), float(fin.chord_at(1.0)),
+                              float(fin.le_at(1.0)), fin.span, fin.thickness)
 
 
 def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
@@ -170,7 +158,7 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
     step = LOCK_OFFSET / 4.0
     m_lock = mach_cr + step * np.arange(1, int(np.ceil((LOCK_MACH_MAX - mach_cr) / step)) + 1)
     m_lock = m_lock[m_lock <= LOCK_MACH_MAX + 1e-12]
-    p_lock = np.asarray(subsonic(m_lock), float) + 20.0 * (m_lock - mach_cr) ** 4 * float(lock_area_ratio)
+    p_lock = np.asarray(subsonic(m_lock), float) + lock_rise(m_lock, mach_cr, lock_area_ratio)
     p_sonic = float(p_sup[0])
     below = p_lock < p_sonic
     below[:min(4, len(below))] = True                 # always through M_dd = M_cr + 0.108

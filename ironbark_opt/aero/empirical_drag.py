@@ -11,11 +11,19 @@ software* (OpenRocket technical documentation, 2013), sec. 3.4:
 - nose cone: subsonic 0.8 sin^2(phi) with phi the joint half-angle of the
   nose profile (eq. 3.81); above M = 1 the same value times q_stag/q
   (rough supersonic continuation, a stand-in until the panel solver);
-- fin leading edges, rounded (also airfoil and bevelled double-wedge
-  sections, as OpenRocket treats airfoils): (1 - M^2)^-0.417 - 1 (M < 0.9),
-  1 - 1.785 (M - 0.9) (0.9 < M < 1), 1.214 - 0.502/M^2 + 0.1095/M^4 (M > 1)
-  (eq. 3.89); square: 0.85 q_stag/q (eq. 3.87); on the frontal area
+- fin leading edges, square: 0.85 q_stag/q (eq. 3.87), on the frontal area
   thickness x span x count, times cos^2 of the leading-edge sweep;
+- streamlined fin sections (rounded, airfoil, bevelled double wedge): no
+  pressure drag below their critical Mach number (attached subcritical flow,
+  d'Alembert; Korn's drag divergence minus Lock's offset,
+  :mod:`ironbark_opt.aero.compressibility`), Lock's rise 20 (M - M_cr)^4 on the
+  exposed planform above it until it reaches the sonic value or Mach 0.95, then
+  linear to the sonic value at Mach 1: OpenRocket's rounded-edge drag
+  1.214 - 0.502/M^2 + 0.1095/M^4 (M >= 1, eq. 3.89) on the frontal area, which
+  carries on above Mach 1.  (OpenRocket applies eq. 3.89's subsonic branch
+  (1 - M^2)^-0.417 - 1 from Mach 0, which makes drag rise from Mach 0.5 on
+  thick or airfoil fins: Calisto's NACA 0012 fins gave CA 0.18 of leading-edge
+  drag at Mach 0.82, where its measured curve is flat.)
 - fin trailing edges: the base-drag coefficient (eq. 3.94) on the same
   frontal area for a square (blunt) trailing edge, half of it for a rounded
   one, none for sharp ones (as OpenRocket's FinSetCalc; see
@@ -31,6 +39,7 @@ from __future__ import annotations
 import numpy as np
 
 from ironbark_opt.aero.base_drag import cd_base
+from ironbark_opt.aero.compressibility import LOCK_MACH_MAX, korn_critical_mach, lock_rise
 from ironbark_opt.aero.table import AeroTable
 from ironbark_opt.rocket.body import Transition
 from ironbark_opt.rocket.nose import NoseCone
@@ -115,11 +124,35 @@ def boattail_separation_fraction(transition) -> float:
     return 1.0 if gamma < 1 else ((3.0 - gamma) / 2.0 if gamma < 3 else 0.0)
 
 
+def streamlined_fin_ca(fins, mach, reference_area: float) -> np.ndarray:
+    """Compressibility pressure drag [-] of a fin set with a streamlined section
+    (rounded, airfoil, bevelled) on ``reference_area`` [m^2] vs ``mach`` [-]: 0 below
+    the critical Mach number, Lock's rise, the rounded-edge sonic and supersonic value
+    (see the module docstring); numeric-only."""
+    m = np.asarray(mach, dtype=float)
+    _, le, chord = fins.outline(1)
+    m_cr = korn_critical_mach(float(chord[0]), float(chord[-1]), float(le[-1]), fins.span,
+                              fins.thickness)
+    frontal = fins.thickness * fins.span * fins.count / reference_area
+    edge = np.cos(np.arctan2(fins.sweep_length, fins.span)) ** 2 * frontal
+    sonic = float(rounded_le(1.0)) * edge
+    rise = np.minimum(lock_rise(m, m_cr, fins.count * fins.planform_area() / reference_area),
+                      sonic)
+    at_max = float(np.minimum(lock_rise(LOCK_MACH_MAX, m_cr, fins.count * fins.planform_area()
+                                        / reference_area), sonic))
+    ramp = at_max + (sonic - at_max) * (m - LOCK_MACH_MAX) / (1.0 - LOCK_MACH_MAX)
+    return np.where(m >= 1.0, rounded_le(m) * edge, np.where(m > LOCK_MACH_MAX, ramp, rise))
+
+
 def pressure_ca(rocket, mach) -> np.ndarray:
     """Pressure-drag CA [-] on the rocket's reference area vs Mach (numeric-only):
-    :func:`separated_pressure_ca` plus blunt fin trailing edges (eq. 3.94)."""
+    :func:`separated_pressure_ca` (square fin edges), :func:`streamlined_fin_ca`
+    (other fin sections) and blunt fin trailing edges (eq. 3.94)."""
     m = np.asarray(mach, dtype=float)
-    ca = separated_pressure_ca(rocket, m)
+    ca = separated_pressure_ca(rocket, m, streamlined_edges=False)
+    for fins in rocket.fin_sets():
+        if fins.section.kind != "square":
+            ca += streamlined_fin_ca(fins, m, rocket.reference_area())
     for fins in rocket.fin_sets():
         ca += np.asarray(cd_base(m), dtype=float) * fins.trailing_edge_base_area() / rocket.reference_area()
     return ca

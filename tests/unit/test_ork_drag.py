@@ -82,6 +82,32 @@ def test_bevelled_fins_are_not_square_at_the_leading_edge():
         bevel, frontal = fins_ca(FinSection(kind="hexagonal", le_bevel=0.02, te_bevel=0.02), m)
         airfoil, _ = fins_ca(FinSection(kind="airfoil"), m)
         assert bevel == pytest.approx(airfoil, rel=1e-12)
-        assert bevel == pytest.approx(float(rounded_le(m)) * frontal + pressure_ca(
+        # below the critical Mach number a streamlined edge has no pressure drag
+        # (d'Alembert); supersonic it carries eq. 3.89 on its frontal area
+        edge = float(rounded_le(m)) * frontal if m >= 1 else 0.0
+        assert bevel == pytest.approx(edge + pressure_ca(
             Rocket("n", [NoseCone(shape="tangent_ogive", length=0.3, radius=0.05),
                          BodyTube(x=0.3, length=1.0, radius=0.05)]), np.array([m]))[0], rel=1e-9)
+
+
+def test_streamlined_fins_rise_by_lock_above_the_korn_critical_mach():
+    """Item 8 of issue 13: no rise below M_cr (Korn - Lock offset), Lock's fourth-power law
+    on the exposed planform above it, continuous into eq. 3.89 at Mach 1."""
+    from ironbark_opt.aero.compressibility import LOCK_OFFSET, korn_critical_mach
+    from ironbark_opt.aero.empirical_drag import streamlined_fin_ca
+    fins = TrapezoidalFins(count=4, x=1.1, thickness=0.012, root_chord=0.12, tip_chord=0.06,
+                           span=0.11, sweep_length=0.06, section=FinSection(kind="airfoil"))
+    sref = np.pi * 0.0635 ** 2
+    m_cr = korn_critical_mach(0.12, 0.06, 0.06, 0.11, 0.012)
+    # Korn by hand: t/c 0.012/0.09, mid-chord sweep atan(0.03/0.11)
+    c = np.cos(np.arctan(0.03 / 0.11))
+    assert m_cr == pytest.approx(0.87 / c - (0.012 / 0.09) / c ** 2 - LOCK_OFFSET, rel=1e-12)
+    ca = streamlined_fin_ca(fins, np.array([0.0, m_cr - 0.01, m_cr, m_cr + 0.05]), sref)
+    assert np.all(ca[:3] == 0.0)
+    assert ca[3] == pytest.approx(20 * 0.05 ** 4 * 4 * fins.planform_area() / sref, rel=1e-12)
+    m = np.linspace(0.5, 1.0, 501)
+    rise = streamlined_fin_ca(fins, m, sref)
+    assert np.all(np.diff(rise) >= -1e-15)                       # monotone to Mach 1
+    frontal = 4 * 0.012 * 0.11 / sref * np.cos(np.arctan2(0.06, 0.11)) ** 2
+    at1 = float(streamlined_fin_ca(fins, np.array([1.0 - 1e-9]), sref)[0])
+    assert at1 == pytest.approx(float(rounded_le(1.0)) * frontal, rel=1e-6)

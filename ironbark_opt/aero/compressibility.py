@@ -1,0 +1,51 @@
+"""Critical Mach number and transonic drag rise of fin sections (numeric-only, no SciPy).
+
+Shared by the panel tables (:mod:`panair.transonic`) and the empirical pressure-drag
+estimate (:mod:`ironbark_opt.aero.empirical_drag`):
+
+- **Drag divergence** by Korn's equation with simple sweep theory (Korn 1970, as
+  extended by Mason, "Configuration Aerodynamics", Virginia Tech, ch. 7, eq. 7-1:
+  ``M_dd = kappa_A / cos L - (t/c) / cos^2 L`` at zero lift, ``kappa_A = 0.87`` for
+  conventional sections), L the mid-chord sweep.
+- **Critical Mach number** ``M_cr = M_dd - (0.1/80)^(1/3)``: Lock's fourth-power law
+  ``dCd = 20 (M - M_cr)^4`` puts ``dCd/dM = 0.1`` at drag divergence (Mason ch. 7;
+  Gur, Mason & Schetz, J. Aircraft 47(6), 2010).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+#: Korn's technology factor for conventional (non-supercritical) sections (Mason ch. 7)
+KORN_KAPPA = 0.87
+#: Lock's law: M_dd - M_cr = (0.1 / 80)^(1/3) (dCd/dM = 0.1 at M_dd with dCd = 20 (M - M_cr)^4)
+LOCK_OFFSET = (0.1 / 80.0) ** (1.0 / 3.0)
+#: Lock's law is followed at most to this Mach number, then faired to the sonic value [-]
+LOCK_MACH_MAX = 0.95
+#: Largest critical Mach number used (the fairing to Mach 1 needs room) [-]
+MACH_CR_MAX = 0.95
+
+
+def korn_critical_mach(root_chord: float, tip_chord: float, tip_le: float, span: float,
+                       thickness: float) -> float:
+    """Critical Mach number [-] of a fin: Korn's drag divergence with the mid-chord
+    sweep, minus Lock's offset, at most :data:`MACH_CR_MAX`.
+
+    ``root_chord``, ``tip_chord`` [m]; ``tip_le`` [m] the tip leading edge aft of the
+    root leading edge; ``span`` [m]; ``thickness`` [m] (t/c over the mean geometric
+    chord).
+    """
+    mean_chord = 0.5 * (root_chord + tip_chord)
+    tc = thickness / max(mean_chord, 1e-300)
+    tan_half = (tip_le + 0.5 * tip_chord - 0.5 * root_chord) / span
+    c = math.cos(math.atan(tan_half))
+    m_dd = KORN_KAPPA / c - tc / c ** 2                 # Korn / Mason eq. 7-1, c_l = 0
+    return float(min(m_dd - LOCK_OFFSET, MACH_CR_MAX))
+
+
+def lock_rise(mach, mach_cr: float, area_ratio: float = 1.0):
+    """Lock's drag rise ``20 (M - M_cr)^4`` [-] (0 below ``mach_cr``) on a section area
+    ``area_ratio`` [-] times the reference area."""
+    m = np.asarray(mach, dtype=float)
+    return 20.0 * np.maximum(m - mach_cr, 0.0) ** 4 * float(area_ratio)
