@@ -204,16 +204,24 @@ def _map(card, ax):
     ax.plot([card.apogee_east_m], [card.apogee_north_m], "D", color="C4", ms=6, label="nominal apogee")
     if card.landing_east_m is not None:
         ax.plot([card.landing_east_m], [card.landing_north_m], "X", color="C3", ms=8, label="nominal landing")
-    ax.legend(fontsize=7, loc="best")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, frameon=False)
     which = "landing" if disp is not None and disp.descent else ("apogee" if disp is not None else "nominal")
-    ax.set_title(f"{card.rocket}: {which} map\n{card.atmosphere[:60]}", fontsize=8)
+    ax.set_title(f"{card.rocket}: {which} map\n{_short(card.atmosphere)}", fontsize=8)
 
 
 def _band(card, ax):
     """Apogee histogram of the Monte Carlo with the 5-95 % band and the target."""
     from ironbark_opt.analysis.plots import plot_apogee_histogram
     plot_apogee_histogram(card.dispersion, ax)
-    ax.set_title(f"{card.rocket}: apogee, {card.samples} flights\n{card.atmosphere[:60]}", fontsize=8)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
+    ax.set_title(f"{card.rocket}: apogee, {card.samples} flights\n{_short(card.atmosphere)}", fontsize=8)
+
+
+def _short(atmosphere: str, width: int = 64) -> str:
+    """The card's atmosphere line shortened for a figure title, keeping its valid time."""
+    source, _, valid = atmosphere.partition(", valid ")
+    valid = f", valid {valid[:16]}" if valid else ""
+    return textwrap.shorten(source, max(width - len(valid), 20), placeholder=" ...") + valid
 
 
 def write_flight_card(path, card: FlightCard) -> None:
@@ -241,11 +249,11 @@ def write_flight_card(path, card: FlightCard) -> None:
             fig.text(0.06, y, line, family="monospace", fontsize=9.5 if not heading else 10,
                      weight="bold" if heading else "normal", va="top")
             y -= 0.0185
-        top = min(y - 0.04, 0.36)
+        top, bottom = min(y - 0.04, 0.37), 0.12         # room below the axes for the legends
         if card.dispersion is not None:
-            _map(card, fig.add_axes([0.11, 0.05, 0.36, top - 0.05]))
-            _band(card, fig.add_axes([0.60, 0.05, 0.36, top - 0.05]))
+            _map(card, fig.add_axes([0.11, bottom, 0.36, top - bottom]))
+            _band(card, fig.add_axes([0.60, bottom, 0.36, top - bottom]))
         else:
-            _map(card, fig.add_axes([0.11, 0.05, 0.84, top - 0.05]))
+            _map(card, fig.add_axes([0.11, bottom, 0.84, top - bottom]))
         fig.savefig(path, dpi=150, format=suffix[1:])
         plt.close(fig)
