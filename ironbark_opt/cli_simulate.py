@@ -52,6 +52,8 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
     check_output_path(kml_path, "--kml", (".kml",))
+    if csv_format != "ironbark" and csv_path is None:
+        raise click.UsageError("--csv-format needs --csv FILE")
     kwargs = {"rail_exit": rail_exit, "table": table,
               **atmosphere_load_kwargs(atmosphere, atmosphere_time, forecast, site, time)}
     if config is not None:

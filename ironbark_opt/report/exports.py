@@ -55,8 +55,12 @@ def openrocket_columns(flight, latitude: float | None = None, longitude: float |
         "Roll rate (°/s)": np.degrees(df["wx_b_radps"]),
         "Pitch rate (°/s)": np.degrees(df["wy_b_radps"]),
         "Yaw rate (°/s)": np.degrees(df["wz_b_radps"]),
-        "Vertical orientation (zenith) (°)": 90.0 - df["pitch_deg"],
-        "Lateral orientation (azimuth) (°)": df["heading_deg"],
+        # OpenRocket's orientation of the body axis (x east, y north, z up): "zenith"
+        # theta = atan2(z, hypot(x, y)) is the elevation above the horizon and "azimuth"
+        # phi = atan2(y, x) counts counter-clockwise from east (OpenRocket
+        # RK4SimulationStepper / AbstractSimulationStepper, TYPE_ORIENTATION_THETA/PHI)
+        "Vertical orientation (zenith) (°)": df["pitch_deg"],
+        "Lateral orientation (azimuth) (°)": (90.0 - df["heading_deg"] + 180.0) % 360.0 - 180.0,
         "Mass (kg)": df["mass_kg"],
         "CP location (m)": df["cp_x_m"],
         "CG location (m)": df["cg_x_m"],

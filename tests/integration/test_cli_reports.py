@@ -176,6 +176,9 @@ def test_openrocket_csv(simulated):
     assert df["Altitude (m)"].to_numpy() == pytest.approx(table["altitude_agl_m"].to_numpy(), rel=1e-9, abs=1e-6)
     assert df["Mass (kg)"].to_numpy() == pytest.approx(table["mass_kg"].to_numpy(), rel=1e-9)
     assert df["Latitude (° N)"].iloc[0] == pytest.approx(LAT, abs=1e-8)
+    # on the rail: 84 deg above the horizon, heading 133 deg = 90 - 133 = -43 deg from east (OpenRocket's angles)
+    assert df["Vertical orientation (zenith) (°)"].iloc[0] == pytest.approx(84.0, abs=1e-6)
+    assert df["Lateral orientation (azimuth) (°)"].iloc[0] == pytest.approx(-43.0, abs=1e-6)
     # vertical acceleration (differentiated) is -g in the ballistic coast near apogee
     coast = (df["Time (s)"] > data["apogee_time_s"] - 2) & (df["Time (s)"] < data["apogee_time_s"] + 2)
     assert df.loc[coast, "Vertical acceleration (m/s²)"].mean() == pytest.approx(-9.78, abs=0.3)
