@@ -55,6 +55,8 @@ class FlightCard:
     apogee_p05_m: float | None = None
     apogee_p95_m: float | None = None
     samples: int | None = None
+    band_m: float | None = None
+    probability_in_band: float | None = None
     landing_east_m: float | None = None
     landing_north_m: float | None = None
     landing_distance_m: float | None = None
@@ -82,6 +84,9 @@ class FlightCard:
                                            f"({self.samples} Monte Carlo flights)"))
         else:
             rows.append(("apogee 5-95 %", "no dispersion spec given"))
+        if self.probability_in_band is not None:
+            rows.append((f"P(+-{self.band_m:.0f} m)", f"{self.probability_in_band:.3f} of the Monte Carlo flights "
+                                                      f"within {self.band_m:.1f} m of the target"))
         rows.append(("apogee drift", f"{self.apogee_east_m:.1f} m east, {self.apogee_north_m:.1f} m north"))
         rows += [("RANGE SAFETY", ""), ("rail-exit speed", f"{self.rail_exit_speed_mps:.2f} m/s"),
                  ("stability margin", f"{self.static_margin_rail_exit_cal:.2f} cal at rail exit, "
@@ -107,7 +112,7 @@ class FlightCard:
         out = {k: getattr(self, k) for k in (
             "rocket", "motor", "site", "launch_time", "atmosphere", "rail", "ballast_kg", "ballast_x_m",
             "apogee_per_100g_m", "target_agl_m", "apogee_agl_m", "apogee_p05_m", "apogee_p95_m", "samples",
-            "apogee_east_m", "apogee_north_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal",
+            "band_m", "probability_in_band", "apogee_east_m", "apogee_north_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal",
             "static_margin_min_cal", "max_mach", "max_dynamic_pressure_Pa", "landing_east_m", "landing_north_m",
             "landing_distance_m")}
         out["landing_ellipse"] = None if self.landing_ellipse is None else dict(self.landing_ellipse)
@@ -171,6 +176,8 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
     if dispersion is not None:
         a = dispersion.stats["apogee_agl_m"]
         kw.update(apogee_p05_m=a["p05"], apogee_p95_m=a["p95"], samples=dispersion.samples)
+        if "band_m" in dispersion.extra:
+            kw.update(band_m=dispersion.extra["band_m"], probability_in_band=dispersion.extra["probability_in_band"])
         if dispersion.descent:
             kw["landing_ellipse"] = dict(dispersion.extra["landing_ellipse"])
     if "landing_east_m" in s:

@@ -26,6 +26,11 @@ def test_lines_carry_the_numbers():
                     "apogee 5-95 %      no dispersion spec given", "launch time (UTC)  2022-10-13T12:00Z"):
         assert snippet in text
     assert all(len(line) <= 19 + 62 for line in CARD.text_lines())    # the atmosphere line wraps
+    import dataclasses
+    banded = dataclasses.replace(CARD, apogee_p05_m=2950.0, apogee_p95_m=3050.0, samples=400, band_m=50.0,
+                                 probability_in_band=0.8125)
+    assert "P(+-50 m)          0.812 of the Monte Carlo flights within 50.0 m of the target" in banded.text_lines()
+    assert "apogee 5-95 %      2950.0 to 3050.0 m AGL (400 Monte Carlo flights)" in banded.text_lines()
     d = CARD.to_dict()
     assert d["lines"] == CARD.text_lines() and d["ballast_kg"] == 0.4321 and d["landing_ellipse"] is None
 
