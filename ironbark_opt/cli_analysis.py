@@ -4,7 +4,7 @@ from __future__ import annotations
 import click
 
 from ironbark_opt.cli_common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
-                                     atmosphere_options, atmosphere_summary, atomic_write,
+                                     atmosphere_options, atmosphere_summary, atomic_write, atomic_write_text,
                                      check_output_path, emit, handle_errors, json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
@@ -108,6 +108,10 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
               help="Stream each chunk to a Parquet file here; re-running into it resumes.")
 @click.option("--progress/--no-progress", default=True, help="Progress bar on stderr.")
 @click.option("--csv", "csv_path", type=_FILE_OUT, help="Write every sample (parameters and results).")
+@click.option("--samples-out", "samples_path", type=_FILE_OUT,
+              help="Write every sample to .csv or .parquet (Parquet needs pyarrow).")
+@click.option("--kml", "kml_path", type=_FILE_OUT,
+              help="Write the 1/2/3-sigma landing (without --descent: apogee) ellipses for Google Earth (KML).")
 @click.option("--histogram", "hist_path", type=_FILE_OUT, help="Write the apogee histogram (PNG/PDF/SVG).")
 @click.option("--ellipse", "ellipse_path", type=_FILE_OUT,
               help="Write the landing (or, without --descent, apogee) dispersion ellipses.")
@@ -117,14 +121,19 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
 @handle_errors
 def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m, rail_exit, config, table,
                        ballast_kg, ballast_x_m, allow_unstable, atmosphere, atmosphere_time, forecast, site,
-                       time, chunk, jit, executor, results_dir, progress, csv_path, hist_path, ellipse_path,
-                       calibration_path, as_json):
+                       time, chunk, jit, executor, results_dir, progress, csv_path, samples_path, kml_path, hist_path,
+                       ellipse_path, calibration_path, as_json):
     """Monte Carlo dispersion of ROCKET: apogee, drift and landing statistics."""
     from ironbark_opt.analysis.distributions import load_spec
     from ironbark_opt.analysis.montecarlo import montecarlo
     from ironbark_opt.errors import InputError
 
+    from ironbark_opt.report.exports import check_samples_path, write_samples
+    from ironbark_opt.report.geodesy import site_position
+
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
+    check_samples_path(samples_path, "--samples-out")
+    check_output_path(kml_path, "--kml", (".kml",))
     check_output_path(hist_path, "--histogram", PLOT_SUFFIXES)
     check_output_path(ellipse_path, "--ellipse", PLOT_SUFFIXES)
     check_output_path(results_dir, "--results-dir", directory=True)
@@ -137,11 +146,21 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     if calibration_path is not None:
         from ironbark_opt.telemetry.calibration_file import apply_calibration
         setup = apply_calibration(setup, calibration_path)
+    if kml_path:
+        site_position(setup, "--kml")            # refused before the flights when the site is unknown
     spec = load_spec(spec_path)
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit="auto" if jit is None else jit, executor=executor, output=results_dir)
     if csv_path:
-        atomic_write(csv_path, lambda tmp: disp.to_dataframe().to_csv(tmp, index=False))
+        atomic_write(csv_path, lambda tmp: write_samples(disp, tmp))
+    if samples_path:
+        atomic_write(samples_path, lambda tmp: write_samples(disp, tmp))
+    result = disp.to_dict()
+    result["atmosphere"], line = atmosphere_summary(setup)
+    if kml_path:
+        from ironbark_opt.report.kml import dispersion_kml
+        atomic_write_text(kml_path, dispersion_kml(disp, *site_position(setup), setup.site_elevation,
+                                                   atmosphere=" ".join(line.split())))
     if hist_path or ellipse_path:
         _agg()
         from ironbark_opt.analysis.plots import plot_apogee_histogram, plot_landing_ellipse
@@ -149,8 +168,6 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
             atomic_write(hist_path, lambda tmp: plot_apogee_histogram(disp, filename=tmp))
         if ellipse_path:
             atomic_write(ellipse_path, lambda tmp: plot_landing_ellipse(disp, filename=tmp))
-    result = disp.to_dict()
-    result["atmosphere"], line = atmosphere_summary(setup)
     emit(result, as_json, disp.summary() + "\n" + line)
 
 

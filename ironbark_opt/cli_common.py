@@ -159,6 +159,13 @@ def atomic_write(path, write) -> None:
             os.unlink(tmp)
 
 
+def atomic_write_text(path, text: str) -> None:
+    """Write ``text`` (UTF-8) to ``path`` through :func:`atomic_write`."""
+    from pathlib import Path
+
+    atomic_write(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+
+
 def atmosphere_options(func):
     """The atmosphere options every flying command shares (one definition):
     ``--atmosphere FILE [--atmosphere-time T]`` or ``--forecast rap|gfs --site

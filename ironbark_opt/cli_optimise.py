@@ -30,7 +30,8 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
     columns = forecast_profile(model, time, site=where)
     lat, elevation = where.latitude, where.elevation
     elevation = columns.ground_elevation if columns.ground_elevation is not None else elevation
-    return dataclasses.replace(setup, atmosphere=columns.to_profile(), site_elevation=float(elevation), latitude=lat)
+    return dataclasses.replace(setup, atmosphere=columns.to_profile(), site_elevation=float(elevation), latitude=lat,
+                               longitude=where.longitude)
 
 
 @click.command("ballast")
@@ -60,12 +61,21 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
                    "processes, or a Dask scheduler.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
               help="Write the flight at the optimum (PNG/PDF/SVG).")
+@click.option("--card", "card_path", type=click.Path(dir_okay=False, writable=True),
+              help="Write the flight card at the optimum: one page (PDF/PNG/SVG) for the range safety "
+                   "officer and the ballast bay.")
+@click.option("--card-spec", "card_spec", type=click.Path(dir_okay=False),
+              help="Dispersion spec (as for 'montecarlo --spec') for the card's 5-95 % apogee band and "
+                   "landing ellipse: a Monte Carlo at the optimum.")
+@click.option("--card-samples", type=click.IntRange(min=2, max=100_000), default=500, show_default=True,
+              help="Monte Carlo flights behind the card's band.")
 @click.option("--allow-unstable", is_flag=True, help="Accept a rocket whose static margin is below zero.")
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_time, forecast, site, time,
                     min_rail_speed, min_margin, max_ballast, ballast_x, free_position, rail_exit, solve_for,
-                    table, calibration_path, processes, executor, plot_path, allow_unstable, as_json):
+                    table, calibration_path, processes, executor, plot_path, card_path, card_spec, card_samples,
+                    allow_unstable, as_json):
     """Ballast (and motor), or the air-brake deployment, that put ROCKET's apogee on --target."""
     from ironbark_opt.optimise.ballast import solve_ballast
     from ironbark_opt.optimise.motor_choice import choose_motor
@@ -76,6 +86,10 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
     from ironbark_opt.vehicle import load_setup
 
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
+    from ironbark_opt.report.card import CARD_SUFFIXES
+    check_output_path(card_path, "--card", CARD_SUFFIXES)
+    if card_spec is not None and card_path is None:
+        raise click.UsageError("--card-spec needs --card FILE")
     if processes is not None and processes < 1:
         raise InputError(f"must be >= 1, got {processes}", field="--processes")
     for value, option in ((min_margin, "--min-margin"), (min_rail_speed, "--min-rail-speed")):
@@ -101,6 +115,10 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
         setup = apply_calibration(setup, calibration_path)
     opts = option_overrides(setup, ballast_x_m=ballast_x, max_ballast=max_ballast, body_length=setup.body_length)
     check_flight_inputs(setup, {**setup.nominal, **opts["parameters"]}, allow_unstable=allow_unstable)
+    if card_spec is not None:
+        from ironbark_opt.analysis.distributions import load_spec
+        card_spec = load_spec(card_spec)                 # a bad spec fails before the solve
+    card = dict(path=card_path, spec=card_spec, samples=card_samples, time=time or atmosphere_time, site=site)
     if solve_for != "ballast":
         if motors or free_position or max_ballast is not None or ballast_x is not None:
             raise click.UsageError(f"--solve {solve_for} takes no ballast or motor options")
@@ -108,6 +126,7 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
         solution = solve_airbrakes(setup, target, variable=solve_for)
         _plot(setup, solution, plot_path)
         result = solution.to_dict()
+        _card(setup, solution, result, **card)
         result["atmosphere"] = flown
         emit(result, as_json, solution.summary() + "\n" + flown_line)
         return
@@ -130,12 +149,14 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
         result["feasible"] = ranking.best is not None
         for label, message in ranking.failures:
             click.echo(f"warning: motor {label}: {message}", err=True)
-        if best is not None and plot_path:
+        if best is not None and (plot_path or card_path):
             from ironbark_opt.optimise.motor_choice import expand_candidates
             for cand in expand_candidates(motors):
                 motor = cand.load()
                 if motor.designation == best.motor:
-                    _plot(dataclasses.replace(setup, motor=motor), best, plot_path)
+                    best_setup = dataclasses.replace(setup, motor=motor)
+                    _plot(best_setup, best, plot_path)
+                    _card(best_setup, best, result, **card)
                     break
         result["atmosphere"] = flown
         if ranking.solutions or as_json:     # nothing solved: the failures are on stderr (and in JSON)
@@ -149,8 +170,16 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
     solution = solve_ballast(setup, target, **kwargs)
     _plot(setup, solution, plot_path)
     result = solution.to_dict()
+    _card(setup, solution, result, **card)
     result["atmosphere"] = flown
     emit(result, as_json, solution.summary() + "\n" + flown_line)
+
+
+def _at_optimum(solution) -> dict:
+    """The parameters [SI] a solution flies (ballast, or the air brakes' setting)."""
+    if hasattr(solution, "variable"):                 # an AirbrakeSolution
+        return dict(solution.parameters)
+    return {"ballast_mass": solution.values["ballast_kg"], "ballast_x": solution.values["ballast_x_m"]}
 
 
 def _plot(setup, solution, path):
@@ -161,12 +190,30 @@ def _plot(setup, solution, path):
     matplotlib.use("Agg")
     from ironbark_opt.flight import simulate
     from ironbark_opt.plots import plot_flight
-    if hasattr(solution, "variable"):                 # an AirbrakeSolution
-        flight = simulate(setup, parameters=dict(solution.parameters))
-    else:
-        flight = simulate(setup, parameters={"ballast_mass": solution.values["ballast_kg"],
-                                             "ballast_x": solution.values["ballast_x_m"]})
+    flight = simulate(setup, parameters=_at_optimum(solution))
     atomic_write(path, lambda tmp: plot_flight(flight, filename=tmp))
+
+
+def _card(setup, solution, result, *, path, spec, samples, time=None, site=None):
+    """Fly the optimum to landing (and ``spec``'s Monte Carlo around it), write
+    the flight card to ``path`` and add its numbers to ``result["flight_card"]``."""
+    if not path or solution is None:
+        return
+    import matplotlib
+    matplotlib.use("Agg")
+    from ironbark_opt.flight import simulate
+    from ironbark_opt.report.card import apogee_per_100g, build_card, write_flight_card
+    at = _at_optimum(solution)
+    flight = simulate(setup, parameters=at, descent=True)
+    disp = None
+    if spec is not None:
+        from ironbark_opt.analysis.montecarlo import montecarlo
+        disp = montecarlo(setup, spec, samples, descent=True, target=solution.values["target_agl_m"],
+                          parameters=at, progress=False)
+    card = build_card(setup, flight, solution=solution, dispersion=disp,
+                      apogee_per_100g_m=apogee_per_100g(setup, at), launch_time=time, site_name=site)
+    atomic_write(path, lambda tmp: write_flight_card(tmp, card))
+    result["flight_card"] = card.to_dict()
 
 
 COMMANDS = [ballast_command]

@@ -72,6 +72,17 @@ def error_ellipse(east, north) -> dict:
             "azimuth_deg": float(math.degrees(math.atan2(major[0], major[1])) % 180.0)}
 
 
+def ellipse_points(ellipse: dict, k: float, n: int = 181) -> tuple[np.ndarray, np.ndarray]:
+    """(east, north) [m] on the ``k``-sigma ellipse of :func:`error_ellipse`."""
+    th = np.linspace(0.0, 2 * math.pi, n)
+    az = math.radians(ellipse["azimuth_deg"])
+    u, v = k * ellipse["semi_major_m"] * np.cos(th), k * ellipse["semi_minor_m"] * np.sin(th)
+    # major axis at azimuth az (clockwise from north), minor axis 90 deg further
+    east = ellipse["center_east_m"] + u * math.sin(az) + v * math.cos(az)
+    north = ellipse["center_north_m"] + u * math.cos(az) - v * math.sin(az)
+    return east, north
+
+
 @dataclass(frozen=True)
 class Dispersion:
     """Result of :func:`montecarlo` (immutable).

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ironbark_opt.analysis.montecarlo import ELLIPSE_CONTENT, error_ellipse
+from ironbark_opt.analysis.montecarlo import ELLIPSE_CONTENT, ellipse_points, error_ellipse  # noqa: F401 (re-export)
 from ironbark_opt.errors import InputError
 from ironbark_opt.plots import _axes, _finish
 
@@ -43,17 +43,6 @@ def plot_apogee_histogram(dispersion, ax=None, *, filename=None, bins: int | str
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)
     return _finish(fig, filename)
-
-
-def ellipse_points(ellipse: dict, k: float, n: int = 181) -> tuple[np.ndarray, np.ndarray]:
-    """(east, north) [m] on the ``k``-sigma ellipse of :func:`error_ellipse`."""
-    th = np.linspace(0.0, 2 * math.pi, n)
-    az = math.radians(ellipse["azimuth_deg"])
-    u, v = k * ellipse["semi_major_m"] * np.cos(th), k * ellipse["semi_minor_m"] * np.sin(th)
-    # major axis at azimuth az (clockwise from north), minor axis 90 deg further
-    east = ellipse["center_east_m"] + u * math.sin(az) + v * math.cos(az)
-    north = ellipse["center_north_m"] + u * math.cos(az) - v * math.sin(az)
-    return east, north
 
 
 def plot_landing_ellipse(dispersion, ax=None, *, filename=None, which: str = "auto", sigmas=(1, 2, 3)):

@@ -81,6 +81,8 @@ class FlightSetup:
         Ground level above sea level at the rail.
     latitude : float or None [rad]
         For normal gravity; None uses standard gravity at sea level.
+    longitude : float or None [rad]
+        East positive; only places the flight on a map (KML, flight card).
     rail_exit_offset : float [m]
         The rocket leaves the rail after travelling ``rail_length -
         rail_exit_offset``; e.g. the distance from the nozzle exit to the
@@ -113,6 +115,7 @@ class FlightSetup:
     atmosphere: Any
     site_elevation: float = 0.0
     latitude: float | None = None
+    longitude: float | None = None
     rail_exit_offset: float = 0.0
     nominal: Mapping[str, float] = field(default_factory=dict)
     parachutes: tuple = ()

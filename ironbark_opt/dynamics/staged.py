@@ -75,16 +75,17 @@ class StagedSetup:
     atmosphere: object = None
     site_elevation: float | None = None
     latitude: float | None = None
+    longitude: float | None = None
 
     def __post_init__(self):
-        env = {k: getattr(self, k) for k in ("atmosphere", "site_elevation", "latitude")
+        env = {k: getattr(self, k) for k in ("atmosphere", "site_elevation", "latitude", "longitude")
                if getattr(self, k) is not None}
         if env:
             for key in ("stack", "sustainer", "booster"):
                 vehicle = getattr(self, key)
                 if vehicle is not None:
                     object.__setattr__(self, key, dataclasses.replace(vehicle, **env))
-        for k in ("atmosphere", "site_elevation", "latitude"):
+        for k in ("atmosphere", "site_elevation", "latitude", "longitude"):
             object.__setattr__(self, k, getattr(self.stack, k))
 
     # What simulate() and the summary read from a setup:

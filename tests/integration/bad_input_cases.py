@@ -433,6 +433,16 @@ case("out-aero-build-missing-folder", "aero build {C} --out {T}/no/where/t", ["-
 case("out-aero-plot-ext", "aero plot {T}/tables/Kestrel.csv --out {T}/p.xyz", ["--out"], outputs=["p.xyz"])
 case("out-aero-plot-under-file", "aero plot {T}/tables/Kestrel.csv --out {C}/p.png", ["--out"])
 case("out-motor-download-dir-is-file", "motor get K550W --offline -o {CD}/calisto.toml/x", ["output-dir"])
+case("out-sim-kml-ext", sim_c + " --kml {T}/x.kmz", ["--kml", ".kml"], outputs=["x.kmz"])
+case("out-sim-csv-format", sim_c + " --csv {T}/x.csv --csv-format excel", ["--csv-format"], outputs=["x.csv"])
+case("out-ballast-card-missing-folder", ball_c + " --card {T}/no/c.pdf", ["--card", "no"], outputs=["no"])
+case("out-ballast-card-ext", ball_c + " --card {T}/c.doc", ["--card", ".pdf"], outputs=["c.doc"])
+case("out-ballast-card-spec-missing", ball_c + " --card {T}/c.pdf --card-spec {T}/none.toml", ["none.toml"],
+     outputs=["c.pdf"])
+case("out-ballast-card-spec-alone", ball_c + " --card-spec {CD}/dispersions.toml", ["--card-spec", "--card"])
+case("out-mc-samples-out-ext", MC + " --samples 4 --samples-out {T}/x.xlsx", ["--samples-out", ".parquet"],
+     outputs=["x.xlsx"])
+case("out-mc-kml-missing-folder", MC + " --samples 4 --kml {T}/no/x.kml", ["--kml"], outputs=["no"])
 case("out-weather-csv-missing", "weather get --model sounding --file {T}/x.txt --csv {T}/no/x.csv",
      ["--csv"], edits=[write("x.txt", "x")])
 

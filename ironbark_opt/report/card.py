@@ -1,0 +1,266 @@
+"""The flight card: one printable page for the range safety officer and the
+ballast bay (numeric-only).
+
+:func:`build_card` gathers the numbers of one launch (a :class:`Flight` at
+the chosen ballast, optionally the :class:`BallastSolution` and a
+:class:`Dispersion`) into a :class:`FlightCard`; :func:`write_flight_card`
+renders it (PDF, PNG or SVG by the extension).  The text lines on the page
+are exactly :meth:`FlightCard.lines`, which ``--json`` also prints, so the
+page and the JSON cannot disagree.
+"""
+from __future__ import annotations
+
+import math
+import textwrap
+from dataclasses import dataclass, field
+from typing import Mapping
+
+from ironbark_opt.errors import InputError
+
+CARD_SUFFIXES = (".pdf", ".png", ".svg")
+_FT = 0.3048
+#: ballast step of the card's sensitivity line [kg]
+BALLAST_STEP_KG = 0.1
+
+
+@dataclass(frozen=True)
+class FlightCard:
+    """The numbers on a flight card (SI, unit-suffixed; None where not known).
+
+    ``apogee_p05_m``/``apogee_p95_m`` come from a Monte Carlo (``samples``
+    flights); ``landing_ellipse`` is its 1-sigma landing ellipse
+    (:func:`~ironbark_opt.analysis.montecarlo.error_ellipse`);
+    ``apogee_per_100g_m`` is the exact derivative of apogee with respect to
+    the ballast mass times 0.1 kg.
+    """
+
+    rocket: str
+    motor: str
+    site: str
+    launch_time: str | None
+    atmosphere: str
+    rail: str
+    ballast_kg: float
+    ballast_x_m: float
+    apogee_agl_m: float
+    rail_exit_speed_mps: float
+    static_margin_rail_exit_cal: float
+    static_margin_min_cal: float
+    max_mach: float
+    max_dynamic_pressure_Pa: float
+    apogee_east_m: float
+    apogee_north_m: float
+    target_agl_m: float | None = None
+    apogee_per_100g_m: float | None = None
+    apogee_p05_m: float | None = None
+    apogee_p95_m: float | None = None
+    samples: int | None = None
+    band_m: float | None = None
+    probability_in_band: float | None = None
+    landing_east_m: float | None = None
+    landing_north_m: float | None = None
+    landing_distance_m: float | None = None
+    landing_ellipse: Mapping[str, float] | None = None
+    #: the Monte Carlo (for the page's figures; not in :meth:`to_dict`)
+    dispersion: object = field(default=None, repr=False, compare=False)
+
+    def lines(self) -> list[tuple[str, str]]:
+        """(heading or label, text) rows exactly as printed on the page; a
+        heading has the text ``""``."""
+        rows = [("VEHICLE AND SITE", ""), ("rocket", self.rocket), ("motor", self.motor), ("site", self.site),
+                ("launch time (UTC)", self.launch_time or "not given"), ("rail", self.rail)]
+        rows += [("atmosphere", part) if i == 0 else ("", part)
+                 for i, part in enumerate(textwrap.wrap(self.atmosphere, 62) or ["-"])]
+        rows += [("BALLAST BAY", ""), ("ballast mass", f"{self.ballast_kg:.3f} kg"),
+                 ("ballast position", f"{self.ballast_x_m:.3f} m aft of the nose tip")]
+        if self.apogee_per_100g_m is not None:
+            rows.append(("apogee per 100 g", f"{self.apogee_per_100g_m:+.1f} m (exact derivative)"))
+        rows.append(("PREDICTION", ""))
+        if self.target_agl_m is not None:
+            rows.append(("target apogee", f"{self.target_agl_m:.1f} m AGL ({self.target_agl_m / _FT:.0f} ft)"))
+        rows.append(("predicted apogee", f"{self.apogee_agl_m:.1f} m AGL ({self.apogee_agl_m / _FT:.0f} ft)"))
+        if self.apogee_p05_m is not None:
+            rows.append(("apogee 5-95 %", f"{self.apogee_p05_m:.1f} to {self.apogee_p95_m:.1f} m AGL "
+                                           f"({self.samples} Monte Carlo flights)"))
+        else:
+            rows.append(("apogee 5-95 %", "no dispersion spec given"))
+        if self.probability_in_band is not None:
+            rows.append((f"P(+-{self.band_m:.0f} m)", f"{self.probability_in_band:.3f} of the Monte Carlo flights "
+                                                      f"within {self.band_m:.1f} m of the target"))
+        rows.append(("apogee drift", f"{self.apogee_east_m:.1f} m east, {self.apogee_north_m:.1f} m north"))
+        rows += [("RANGE SAFETY", ""), ("rail-exit speed", f"{self.rail_exit_speed_mps:.2f} m/s"),
+                 ("stability margin", f"{self.static_margin_rail_exit_cal:.2f} cal at rail exit, "
+                                      f"{self.static_margin_min_cal:.2f} cal minimum"),
+                 ("max Mach", f"{self.max_mach:.3f}"),
+                 ("max q", f"{self.max_dynamic_pressure_Pa / 1000:.2f} kPa")]
+        if self.landing_east_m is not None:
+            rows.append(("landing (nominal)", f"{self.landing_east_m:.1f} m east, {self.landing_north_m:.1f} m "
+                                              f"north ({self.landing_distance_m:.1f} m from the rail)"))
+        el = self.landing_ellipse
+        if el is not None:
+            rows.append(("landing ellipse", f"1 sigma {el['semi_major_m']:.1f} x {el['semi_minor_m']:.1f} m, "
+                                            f"major axis {el['azimuth_deg']:.0f} deg from north"))
+            rows.append(("", f"centre {el['center_east_m']:.1f} m east, {el['center_north_m']:.1f} m north"))
+        return rows
+
+    def text_lines(self) -> list[str]:
+        """:meth:`lines` as the strings placed on the page."""
+        return [f"{label:<19s}{text}".rstrip() if text else label for label, text in self.lines()]
+
+    def to_dict(self) -> dict:
+        """Unit-suffixed numbers and the printed lines (``lines``)."""
+        out = {k: getattr(self, k) for k in (
+            "rocket", "motor", "site", "launch_time", "atmosphere", "rail", "ballast_kg", "ballast_x_m",
+            "apogee_per_100g_m", "target_agl_m", "apogee_agl_m", "apogee_p05_m", "apogee_p95_m", "samples",
+            "band_m", "probability_in_band", "apogee_east_m", "apogee_north_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal",
+            "static_margin_min_cal", "max_mach", "max_dynamic_pressure_Pa", "landing_east_m", "landing_north_m",
+            "landing_distance_m")}
+        out["landing_ellipse"] = None if self.landing_ellipse is None else dict(self.landing_ellipse)
+        out["lines"] = self.text_lines()
+        return out
+
+
+def _site_text(setup, site_name):
+    from ironbark_opt.report.geodesy import position_text
+
+    lat, lon = getattr(setup, "latitude", None), getattr(setup, "longitude", None)
+    where = []
+    if site_name:
+        where.append(site_name)
+    if lat is not None and lon is not None:
+        where.append(position_text(lat, lon))
+    where.append(f"{setup.site_elevation:.1f} m ASL")
+    return ", ".join(where)
+
+
+def apogee_per_100g(setup, parameters: Mapping[str, float]) -> float:
+    """Apogee change [m] per +100 g of ballast at ``parameters``: the exact
+    (CasADi AD) derivative of :mod:`ironbark_opt.analysis.sensitivity` times 0.1 kg."""
+    from ironbark_opt.analysis.sensitivity import sensitivities
+
+    sens = sensitivities(setup, parameters=parameters, names=("ballast_mass",))
+    return sens.derivative("apogee_agl_m", "ballast_mass") * BALLAST_STEP_KG
+
+
+def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g_m: float | None = None,
+               launch_time: str | None = None, site_name: str | None = None) -> FlightCard:
+    """The :class:`FlightCard` of ``flight`` (flown by ``setup`` at the ballast to print).
+
+    Parameters
+    ----------
+    setup : FlightSetup
+    flight : Flight
+        The nominal flight at the card's ballast (with descent for a landing point).
+    solution : BallastSolution, optional
+        Adds the target apogee.
+    dispersion : Dispersion, optional
+        Monte Carlo around the same ballast: the 5-95 % apogee band and the
+        landing (or apogee) ellipse.
+    apogee_per_100g_m : float, optional
+        From :func:`apogee_per_100g` (not computed here: it costs a Jacobian).
+    launch_time, site_name : str, optional
+        Printed as given (e.g. the forecast's valid time and site preset).
+    """
+    from ironbark_opt.atmosphere.files import describe_flown
+
+    s, p = flight.summary_values, flight.parameters
+    d = describe_flown(setup.atmosphere)
+    atmosphere = f"{d['model']}: {d['source']}" + (f", valid {d['valid_time']}" if d.get("valid_time") else "")
+    if launch_time is None and d.get("valid_time"):
+        launch_time = str(d["valid_time"])
+    designation = " ".join(x for x in (getattr(setup.motor, "manufacturer", ""),
+                                       getattr(setup.motor, "designation", "")) if x) or "(unnamed motor)"
+    rail = (f"{p['rail_length']:.2f} m, {math.degrees(p['inclination']):.1f} deg above horizontal, "
+            f"heading {math.degrees(p['heading']):.1f} deg")
+    kw = {}
+    if dispersion is not None:
+        a = dispersion.stats["apogee_agl_m"]
+        kw.update(apogee_p05_m=a["p05"], apogee_p95_m=a["p95"], samples=dispersion.samples)
+        if "band_m" in dispersion.extra:
+            kw.update(band_m=dispersion.extra["band_m"], probability_in_band=dispersion.extra["probability_in_band"])
+        if dispersion.descent:
+            kw["landing_ellipse"] = dict(dispersion.extra["landing_ellipse"])
+    if "landing_east_m" in s:
+        kw.update(landing_east_m=s["landing_east_m"], landing_north_m=s["landing_north_m"],
+                  landing_distance_m=s["landing_distance_m"])
+    if solution is not None:
+        kw["target_agl_m"] = float(solution.values["target_agl_m"])
+    return FlightCard(rocket=flight.name, motor=designation, site=_site_text(setup, site_name),
+                      launch_time=launch_time, atmosphere=atmosphere, rail=rail,
+                      ballast_kg=p["ballast_mass"], ballast_x_m=p["ballast_x"], apogee_agl_m=s["apogee_agl_m"],
+                      rail_exit_speed_mps=s["rail_exit_speed_mps"],
+                      static_margin_rail_exit_cal=s["static_margin_rail_exit_cal"],
+                      static_margin_min_cal=s["static_margin_min_cal"], max_mach=s["max_mach"],
+                      max_dynamic_pressure_Pa=s["max_dynamic_pressure_Pa"], apogee_east_m=s["apogee_east_m"],
+                      apogee_north_m=s["apogee_north_m"], apogee_per_100g_m=apogee_per_100g_m,
+                      dispersion=dispersion, **kw)
+
+
+def _map(card, ax):
+    """Landing map inset: Monte Carlo ellipses when flown, else the nominal points."""
+    disp = card.dispersion
+    if disp is not None:
+        from ironbark_opt.analysis.plots import plot_landing_ellipse
+        plot_landing_ellipse(disp, ax)
+    else:
+        ax.plot([0.0], [0.0], "k^", ms=8, label="launch rail")
+        ax.set_xlabel("east [m]")
+        ax.set_ylabel("north [m]")
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.grid(True, alpha=0.3)
+    ax.plot([card.apogee_east_m], [card.apogee_north_m], "D", color="C4", ms=6, label="nominal apogee")
+    if card.landing_east_m is not None:
+        ax.plot([card.landing_east_m], [card.landing_north_m], "X", color="C3", ms=8, label="nominal landing")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, frameon=False)
+    which = "landing" if disp is not None and disp.descent else ("apogee" if disp is not None else "nominal")
+    ax.set_title(f"{card.rocket}: {which} map\n{_short(card.atmosphere)}", fontsize=8)
+
+
+def _band(card, ax):
+    """Apogee histogram of the Monte Carlo with the 5-95 % band and the target."""
+    from ironbark_opt.analysis.plots import plot_apogee_histogram
+    plot_apogee_histogram(card.dispersion, ax)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
+    ax.set_title(f"{card.rocket}: apogee, {card.samples} flights\n{_short(card.atmosphere)}", fontsize=8)
+
+
+def _short(atmosphere: str, width: int = 64) -> str:
+    """The card's atmosphere line shortened for a figure title, keeping its valid time."""
+    source, _, valid = atmosphere.partition(", valid ")
+    valid = f", valid {valid[:16]}" if valid else ""
+    return textwrap.shorten(source, max(width - len(valid), 20), placeholder=" ...") + valid
+
+
+def write_flight_card(path, card: FlightCard) -> None:
+    """Render ``card`` on one A4 page: ``.pdf``, ``.png`` (150 dpi) or ``.svg``
+    (text kept as text) by the extension of ``path``."""
+    import matplotlib
+    import matplotlib.pyplot as plt
+    from pathlib import Path
+
+    from ironbark_opt import __version__
+
+    suffix = Path(path).suffix.lower()
+    if suffix not in CARD_SUFFIXES:
+        raise InputError(f"unknown file type {suffix or '(none)'!r}; expected one of {', '.join(CARD_SUFFIXES)}",
+                         field="--card")
+    with matplotlib.rc_context({"svg.fonttype": "none", "pdf.fonttype": 42}):
+        fig = plt.figure(figsize=(8.27, 11.69))
+        fig.text(0.06, 0.965, f"FLIGHT CARD  {card.rocket}", fontsize=18, weight="bold", va="top")
+        fig.text(0.06, 0.935, f"{card.motor}   |   Ironbark-Opt {__version__}", fontsize=9, va="top", color="0.3")
+        y = 0.905
+        for (label, text), line in zip(card.lines(), card.text_lines()):
+            heading = not text
+            if heading:
+                y -= 0.006
+            fig.text(0.06, y, line, family="monospace", fontsize=9.5 if not heading else 10,
+                     weight="bold" if heading else "normal", va="top")
+            y -= 0.0185
+        top, bottom = min(y - 0.04, 0.37), 0.12         # room below the axes for the legends
+        if card.dispersion is not None:
+            _map(card, fig.add_axes([0.11, bottom, 0.36, top - bottom]))
+            _band(card, fig.add_axes([0.60, bottom, 0.36, top - bottom]))
+        else:
+            _map(card, fig.add_axes([0.11, bottom, 0.84, top - bottom]))
+        fig.savefig(path, dpi=150, format=suffix[1:])
+        plt.close(fig)
