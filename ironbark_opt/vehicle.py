@@ -202,12 +202,13 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     if Path(path).suffix.lower() == ".ork":
         from ironbark_opt.openrocket import read_ork
         doc = read_ork(_existing(path))
-        if len(doc.rocket.stages) > 1:
+        if len(doc.rocket.stages) > 1 or doc.rocket.pods:
+            from ironbark_opt.openrocket.parallel import parallel_setup
             from ironbark_opt.openrocket.staging import staged_setup
             if table is not None:
                 raise InputError("--table applies to single-stage rockets (each stage of a staged rocket "
                                  "flies its own aerodynamics)", source=path, field="table")
-            return staged_setup(doc, config, **kwargs)
+            return (parallel_setup if doc.rocket.pods else staged_setup)(doc, config, **kwargs)
     rf = load_rocket_file(path, config=config)
     if table is not None:
         table = Path(table)

@@ -84,7 +84,7 @@ def _shifted(comp, dx: float):
 def booster_setup(doc: OrkDocument, cfg, spec_b, launch, **setup_kwargs):
     """The booster alone after separation (its spent motor aboard), in its own
     frame: x from the booster's front end, ``x0`` [m aft of the stack's nose tip]
-    returned with it."""
+    and its tumbling Cd x area [m^2] (flown if it is unstable) returned with it."""
     from ironbark_opt.rocket.toml_io import RocketFile
     from ironbark_opt.vehicle import setup_from_file
 
@@ -97,7 +97,8 @@ def booster_setup(doc: OrkDocument, cfg, spec_b, launch, **setup_kwargs):
     spec = dataclasses.replace(spec_b, nozzle_x=spec_b.nozzle_x - x0)
     rf = RocketFile(rocket, spec, aero, launch, recovery(sub, cfg.config_id), BallastSpec(), doc.path)
     setup = setup_from_file(rf, **setup_kwargs)
-    return dataclasses.replace(setup, name=f"{doc.name} ({stage.name})"), x0
+    from ironbark_opt.aero.tumble import tumble_cd_area
+    return dataclasses.replace(setup, name=f"{doc.name} ({stage.name})"), x0, tumble_cd_area(rocket)
 
 
 def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
@@ -130,6 +131,6 @@ def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
     nominal = {**setups["stack"].nominal, "ballast_x": setups["sustainer"].nominal["ballast_x"]}
     stack = dataclasses.replace(setups["stack"], motor=stack_motor, name=f"{doc.name} (stack)", nominal=nominal)
     sustainer = dataclasses.replace(setups["sustainer"], motor=sus_motor, name=doc.name)
-    booster, x0 = booster_setup(doc, cfg, spec_b, launch, **setup_kwargs)
+    booster, x0, tumble = booster_setup(doc, cfg, spec_b, launch, **setup_kwargs)
     return StagedSetup(stack, sustainer, delay, doc.rocket.stages[1].name, doc.rocket.stages[0].name,
-                       booster=booster, booster_x=x0)
+                       booster=booster, booster_x=x0, booster_tumble_cd_area=tumble)
