@@ -257,15 +257,26 @@ def lift_geometry(rocket) -> LiftGeometry:
 
 
 def friction_components(rocket, roughness: float) -> list[FrictionComponent]:
-    """Skin-friction components: the whole body as one run, each fin set."""
+    """Skin-friction components: the whole body as one run, each fin set.
+
+    Body components with their own ``surface_roughness`` (an .ork finish) form
+    one body component per roughness, each with the whole body's length (run
+    and fineness) and its share of the wetted area, as OpenRocket sums each
+    component's friction at the rocket's Reynolds number with its own finish
+    (Niskanen 2013, sec. 3.4.1).  ``roughness`` [m] is everyone else's."""
     bodies = rocket.body_components()
     length = rocket.length()
-    wetted = sum(c.wetted_area() for c in bodies)
-    comps = [FrictionComponent.body("body", length, 2 * rocket.max_radius(), wetted_area=wetted,
-                                    roughness=roughness)]
+    wetted: dict = {}
+    for c in bodies:
+        k = c.surface_roughness if getattr(c, "surface_roughness", None) is not None else roughness
+        wetted[k] = wetted.get(k, 0.0) + c.wetted_area()
+    comps = [FrictionComponent.body("body" if len(wetted) == 1 else f"body ({k * 1e6:g} um)", length,
+                                    2 * rocket.max_radius(), wetted_area=a, roughness=k)
+             for k, a in wetted.items() if a > 0]
     for fs in rocket.fin_sets():
+        k = fs.surface_roughness if getattr(fs, "surface_roughness", None) is not None else roughness
         comps.append(FrictionComponent.fins(fs.name, fs.wetted_area(), fs.mean_aerodynamic_chord(),
-                                            fs.thickness, roughness=roughness))
+                                            fs.thickness, roughness=k))
     return comps
 
 

@@ -53,6 +53,18 @@ def shape_args(comp: OrkComponent, radius_change: float) -> dict:
                              f"ogive, ellipsoid, power, parabolic or haack", "shape")
 
 
+#: OpenRocket's surface finishes -> equivalent sand-grain roughness [m]
+#: (``ExternalComponent.Finish``, after Niskanen 2013 Table 3.2 and Hoerner, *Fluid-Dynamic Drag*)
+FINISH_ROUGHNESS = {"rough": 500e-6, "roughunfinished": 250e-6, "unfinished": 150e-6, "normal": 60e-6,
+                    "smooth": 20e-6, "optimum": 5e-6, "polished": 2e-6}
+
+
+def finish_roughness(comp: OrkComponent) -> float | None:
+    """Roughness [m] of ``comp``'s ``<finish>`` (None when it has none)."""
+    finish = (comp.element.text("finish") or "").strip().lower()
+    return FINISH_ROUGHNESS.get(finish)
+
+
 def body_component(comp: OrkComponent, *, with_mass: bool = False):
     """NoseCone / BodyTube / Transition for ``comp`` (density only if ``with_mass``)."""
     g = comp.geo
@@ -65,7 +77,8 @@ def body_component(comp: OrkComponent, *, with_mass: bool = False):
     if not filled and thick >= r_max > 0.0:
         filled = True
     common = dict(length=g["length"], x=comp.x, name=comp.name, density=density,
-                  filled=filled, thickness=(thick if (density is not None and not filled) else None))
+                  filled=filled, thickness=(thick if (density is not None and not filled) else None),
+                  surface_roughness=finish_roughness(comp))
     if g["length"] <= 0.0:
         raise comp.element.error(f"'{comp.name}' has length {g['length']} m; expected > 0", "length")
     try:
@@ -92,7 +105,8 @@ def fin_set(comp: OrkComponent, *, with_density: float | None = None):
                          else _SECTIONS.get(g["section"], "square"))
     thickness = g["thickness"] if g["thickness"] > 0 else 1e-6
     common = dict(count=g["count"], x=comp.x, thickness=thickness, cant=g["cant"],
-                  section=section, density=with_density, name=comp.name)
+                  section=section, density=with_density, name=comp.name,
+                  surface_roughness=finish_roughness(comp))
     try:
         if comp.kind == "trapezoidfinset":
             return TrapezoidalFins(root_chord=g["root_chord"], tip_chord=g["tip_chord"],

@@ -53,6 +53,9 @@ class FinSet(abc.ABC):
     mass : float [kg] or None
         Mass override of the whole set.
     name : str
+    surface_roughness : float [m] or None
+        Equivalent sand-grain roughness of the fins (an .ork fin set's finish);
+        None: the rocket's ``[aero] surface_roughness``.
     """
 
     count: int = 4
@@ -63,6 +66,7 @@ class FinSet(abc.ABC):
     density: float | None = None
     mass: float | None = None
     name: str = "fins"
+    surface_roughness: float | None = None
 
     def _check_common(self) -> None:
         if isinstance(self.count, bool) or not isinstance(self.count, (int, np.integer)) \

@@ -53,6 +53,9 @@ class BodyOfRevolution(abc.ABC):
     mass : float [kg] or None
         Mass override: scales the built-up distribution to this mass.
     name : str
+    surface_roughness : float [m] or None
+        Equivalent sand-grain roughness of this component's surface (an .ork
+        component's finish); None: the rocket's ``[aero] surface_roughness``.
     """
 
     length: float
@@ -62,6 +65,7 @@ class BodyOfRevolution(abc.ABC):
     density: float | None = None
     mass: float | None = None
     name: str = ""
+    surface_roughness: float | None = None
 
     def _check_common(self) -> None:
         v.set_fields(self, length=v.positive(self.length, "length"),

@@ -28,7 +28,9 @@ from ironbark_opt.rocket.specs import (GRAIN_KEYS, MOTOR_OVERRIDE_KEYS, AeroSpec
 #: largest magnitude accepted for any number (guards overflow in the mass sums)
 MAX_MAGNITUDE = 1e9
 
-TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart")
+TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart",
+            "stage")
+STAGE_KEYS = ("file", "name", "separation_delay", "table", "drag_power_off", "drag_power_on")
 ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
 _BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass")
@@ -88,6 +90,8 @@ class RocketFile:
     source: Path
     wet_mass_override: MassProperties | None = None
     airbrakes: object = None          # AirbrakeSpec or None (rocket/airbrake_spec.py)
+    #: lower stages below this rocket (``[[stage]]``; :class:`ironbark_opt.staged_vehicle.StageSpec`)
+    stages: tuple = ()
 
     def dry_rocket(self, motor=None) -> Rocket:
         """The rocket with dry mass properties (numeric-only).
@@ -272,7 +276,37 @@ def loads_rocket_toml(text: str, path) -> RocketFile:
                       launch=_read_launch(rd, data.get("launch", {})),
                       recovery=_read_recovery(rd, data.get("recovery", [])),
                       ballast=ballast, source=path, wet_mass_override=wet,
-                      airbrakes=_read_airbrakes(rd, data))
+                      airbrakes=_read_airbrakes(rd, data), stages=_read_stages(rd, data.get("stage", [])))
+
+
+def _read_stages(rd: _Reader, items) -> tuple:
+    """``[[stage]]`` tables -> StageSpecs (a lower stage in its own rocket file)."""
+    from ironbark_opt.staged_vehicle import StageSpec
+
+    if not isinstance(items, list):
+        raise rd.error("expected [[stage]] tables", "stage")
+    out = []
+    for i, d in enumerate(items):
+        label = f"stage[{i}]"
+        rd.check_keys(d, STAGE_KEYS, "stage", i, label)
+        if not isinstance(d.get("file"), str):
+            raise rd.error("missing required key 'file' (the stage's own rocket file)", "stage", None, i,
+                           field=f"{label}.file")
+        file = (rd.path.parent / d["file"]).resolve()
+        if not file.is_file():
+            raise rd.error(f"file not found: {file}", "stage", "file", i, field=f"{label}.file")
+        if file.resolve() == rd.path.resolve():
+            raise rd.error("a stage cannot be the file itself", "stage", "file", i, field=f"{label}.file")
+        delay = rd.number(d, "separation_delay", "stage", i, label, default=0.0)
+        if delay < 0:
+            raise rd.error(f"must be >= 0 s after the stage's burnout, got {delay}", "stage",
+                           "separation_delay", i, field=f"{label}.separation_delay")
+        name = d.get("name", "")
+        if not isinstance(name, str):
+            raise rd.error(f"expected a string, got {name!r}", "stage", "name", i, field=f"{label}.name")
+        aero = {k: rd.file(d, k, "stage") for k in ("table", "drag_power_off", "drag_power_on") if k in d}
+        out.append(StageSpec(file=file, separation_delay=delay, name=name, aero=aero or None))
+    return tuple(out)
 
 
 def _read_airbrakes(rd: _Reader, data):
