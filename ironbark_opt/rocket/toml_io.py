@@ -35,7 +35,7 @@ ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
 _BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass")
 _FINS = ("type", "name", "x", "count", "thickness", "cant_deg", "section", "le_bevel",
-         "te_bevel", "material", "density", "mass")
+         "te_bevel", "material", "density", "mass", "roll_deg", "lift_curve", "airfoil_polar")
 COMPONENT_KEYS = {
     "nose_cone": _BODY + ("shape", "radius", "shape_parameter", "ogive_radius"),
     "body_tube": _BODY + ("radius",),
@@ -397,7 +397,7 @@ def _read_component(rd: _Reader, d, i, prev):
     kw = {}
     for key, val in d.items():
         if key in ("type", "material", "cant_deg", "sweep_angle_deg", "section", "le_bevel",
-                   "te_bevel"):
+                   "te_bevel", "roll_deg", "lift_curve", "airfoil_polar"):
             continue
         if key in ("name", "shape"):
             if not isinstance(val, str):
@@ -431,6 +431,9 @@ def _read_component(rd: _Reader, d, i, prev):
         kw["fore_radius"] = prev.aft_radius
     if kind.endswith("_fins"):
         kw["cant"] = math.radians(rd.number(d, "cant_deg", "component", i, label, default=0.0))
+        if "roll_deg" in d:
+            kw["roll"] = math.radians(rd.number(d, "roll_deg", "component", i, label))
+        kw["section_lift"] = _read_section_lift(rd, d, i, label)
         try:
             kw["section"] = FinSection(kind=d.get("section", "square"),
                                        le_bevel=d.get("le_bevel"), te_bevel=d.get("te_bevel"))
@@ -451,6 +454,29 @@ def _read_component(rd: _Reader, d, i, prev):
         return cls(**kw)
     except InputError as exc:
         raise rd.wrap(exc, "component", i, label, d) from None
+
+
+def _read_section_lift(rd: _Reader, d, i, label):
+    """A fin set's ``lift_curve`` or ``airfoil_polar`` file -> its ``section_lift``."""
+    from ironbark_opt.rocket import fin_files
+    given = [k for k in ("lift_curve", "airfoil_polar") if k in d]
+    if not given:
+        return None
+    if len(given) > 1:
+        raise rd.error("give lift_curve or airfoil_polar, not both", "component", "airfoil_polar", i,
+                       field=f"{label}.airfoil_polar")
+    key = given[0]
+    if not isinstance(d[key], str):
+        raise rd.error(f"expected a file path string, got {d[key]!r}", "component", key, i, field=f"{label}.{key}")
+    path = (rd.path.parent / d[key]).resolve()
+    if not path.is_file():
+        raise rd.error(f"file not found: {path}", "component", key, i, field=f"{label}.{key}")
+    try:
+        if key == "lift_curve":
+            return ("curve", fin_files.read_lift_curve(path, f"{label}.{key}"))
+        return ("polar", fin_files.read_airfoil_polar(path, f"{label}.{key}"))
+    except InputError as exc:
+        raise rd.error(f"{path.name}: {exc.message}", "component", key, i, field=f"{label}.{key}") from None
 
 
 def _read_motor(rd: _Reader, d):
