@@ -95,7 +95,7 @@ def geometry(doc: OrkDocument) -> Rocket:
             if n >= 2 and sep > 0:
                 x0 = c.x + 0.5 * c.length
                 guide = RailButtons(x_fore=x0, x_aft=x0 + (n - 1) * sep, height=c.geo["height"],
-                                    name=c.name)
+                                    name=c.name, angle=math.radians(c.element.number("angleoffset", 0.0)))
     if guide is None:
         for c in doc.rocket.core_components():
             if c.kind == "launchlug" and c.geo["radius"] > c.geo["thickness"] >= 0:

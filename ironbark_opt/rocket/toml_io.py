@@ -45,7 +45,7 @@ COMPONENT_KEYS = {
                                  "sweep_angle_deg"),
     "elliptical_fins": _FINS + ("root_chord", "span"),
     "freeform_fins": _FINS + ("points",),
-    "rail_buttons": ("type", "name", "x_fore", "x_aft", "height", "mass_each"),
+    "rail_buttons": ("type", "name", "x_fore", "x_aft", "height", "mass_each", "angle_deg"),
     "launch_lug": ("type", "name", "x", "length", "outer_radius", "inner_radius",
                    "material", "density"),
     "point_mass": ("type", "name", "x", "mass", "I_transverse", "I_axial"),
@@ -397,7 +397,7 @@ def _read_component(rd: _Reader, d, i, prev):
     kw = {}
     for key, val in d.items():
         if key in ("type", "material", "cant_deg", "sweep_angle_deg", "section", "le_bevel",
-                   "te_bevel", "roll_deg", "lift_curve", "airfoil_polar"):
+                   "te_bevel", "roll_deg", "lift_curve", "airfoil_polar", "angle_deg"):
             continue
         if key in ("name", "shape"):
             if not isinstance(val, str):
@@ -429,6 +429,8 @@ def _read_component(rd: _Reader, d, i, prev):
         kw["radius"] = prev.aft_radius
     if kind == "transition" and "fore_radius" not in d and prev is not None:
         kw["fore_radius"] = prev.aft_radius
+    if kind == "rail_buttons" and "angle_deg" in d:
+        kw["angle"] = math.radians(rd.number(d, "angle_deg", "component", i, label))
     if kind.endswith("_fins"):
         kw["cant"] = math.radians(rd.number(d, "cant_deg", "component", i, label, default=0.0))
         if "roll_deg" in d:

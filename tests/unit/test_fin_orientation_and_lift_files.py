@@ -149,3 +149,28 @@ def test_toml_lift_curve_key(tmp_path):
     both = text.replace("lift_curve", f'airfoil_polar = "{lift.as_posix()}"\nlift_curve', 1)
     with pytest.raises(InputError, match="not both"):
         loads_rocket_toml(both, calisto)
+
+
+def test_rail_button_angle_adds_its_off_axis_inertia():
+    """Two 10 g buttons 0.5 m apart, standoff 10 mm on a 50 mm body, at 30 deg from +y:
+    r = 0.055 m, (y, z) = r (cos 30, sin 30); about the axis point between them
+    I_xx = 2 m r^2, I_yy = 2 m (0.25^2 + z^2), I_zz = 2 m (0.25^2 + y^2), I_yz = -2 m y z."""
+    from ironbark_opt.rocket import RailButtons
+    m, r, a = 0.01, 0.055, math.radians(30.0)
+    y, z = r * math.cos(a), r * math.sin(a)
+    rocket = Rocket("t", [NoseCone(shape="conical", length=0.3, radius=0.05), BodyTube(x=0.3, length=1.0, radius=0.05),
+                          RailButtons(x_fore=0.5, x_aft=1.0, height=0.01, mass_each=m, angle=a)])
+    (name, mp), = [(n, p) for n, p in rocket.component_mass_properties() if n == "rail buttons"]
+    expected = np.array([[2 * m * r * r, 0, 0], [0, 2 * m * (0.0625 + z * z), -2 * m * y * z],
+                         [0, -2 * m * y * z, 2 * m * (0.0625 + y * y)]])
+    print(mp.inertia, expected)
+    assert mp.mass == pytest.approx(0.02) and mp.cg_x == pytest.approx(0.75)
+    np.testing.assert_allclose(mp.inertia, expected, rtol=1e-12, atol=1e-15)
+    on_axis = RailButtons(x_fore=0.5, x_aft=1.0, height=0.01, mass_each=m).mass_properties()
+    assert on_axis.inertia[0, 0] == 0.0 and on_axis.inertia[1, 1] == pytest.approx(2 * m * 0.0625)
+    from ironbark_opt.rocket.toml_io import loads_rocket_toml
+    calisto = Path(__file__).parents[2] / "examples" / "calisto" / "calisto.toml"
+    text = calisto.read_text().replace('type = "rail_buttons"', 'type = "rail_buttons"\nangle_deg = 30', 1)
+    assert 'angle_deg = 30' in text
+    buttons = [c for c in loads_rocket_toml(text, calisto).rocket.components if isinstance(c, RailButtons)]
+    assert buttons[0].angle == pytest.approx(a)
