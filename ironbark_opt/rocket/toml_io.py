@@ -189,6 +189,24 @@ class _Reader:
                              field=f"{label or table}.{key}")
         return float(val)
 
+    def tables(self, items, table, keys):
+        """``(index, table dict, label)`` of each ``[[table]]``, keys checked."""
+        if not isinstance(items, list):
+            raise self.error(f"expected [[{table}]] tables", table)
+        for i, d in enumerate(items):
+            label = f"{table}[{i}]"
+            self.check_keys(d, keys, table, i, label)
+            yield i, d, label
+
+    def table_file(self, d, table, i, label, what, key="file"):
+        """The existing file named by ``key`` of the ``i``-th ``[[table]]`` (required)."""
+        if not isinstance(d.get(key), str):
+            raise self.error(f"missing required key '{key}' ({what})", table, None, i, field=f"{label}.{key}")
+        path = (self.path.parent / d[key]).resolve()
+        if not path.is_file():
+            raise self.error(f"file not found: {path}", table, key, i, field=f"{label}.{key}")
+        return path
+
     def file(self, data, key, table, required=False):
         if key not in data:
             if required:
@@ -283,18 +301,9 @@ def _read_stages(rd: _Reader, items) -> tuple:
     """``[[stage]]`` tables -> StageSpecs (a lower stage in its own rocket file)."""
     from ironbark_opt.staged_vehicle import StageSpec
 
-    if not isinstance(items, list):
-        raise rd.error("expected [[stage]] tables", "stage")
     out = []
-    for i, d in enumerate(items):
-        label = f"stage[{i}]"
-        rd.check_keys(d, STAGE_KEYS, "stage", i, label)
-        if not isinstance(d.get("file"), str):
-            raise rd.error("missing required key 'file' (the stage's own rocket file)", "stage", None, i,
-                           field=f"{label}.file")
-        file = (rd.path.parent / d["file"]).resolve()
-        if not file.is_file():
-            raise rd.error(f"file not found: {file}", "stage", "file", i, field=f"{label}.file")
+    for i, d, label in rd.tables(items, "stage", STAGE_KEYS):
+        file = rd.table_file(d, "stage", i, label, "the stage's own rocket file")
         if file.resolve() == rd.path.resolve():
             raise rd.error("a stage cannot be the file itself", "stage", "file", i, field=f"{label}.file")
         delay = rd.number(d, "separation_delay", "stage", i, label, default=0.0)

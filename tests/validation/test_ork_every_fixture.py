@@ -51,11 +51,7 @@ def _cases():
     return out
 
 
-@pytest.fixture(autouse=True)
-def _motors(monkeypatch, tmp_path):
-    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
-    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
-    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(DATA / "motors"))
+pytestmark = pytest.mark.usefixtures("ork_offline")     # tests/conftest.py
 
 
 @pytest.mark.slow

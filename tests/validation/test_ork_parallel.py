@@ -15,11 +15,7 @@ from ironbark_opt.vehicle import load_setup
 ORK = Path(__file__).parents[1] / "data" / "ork" / "Parallel booster staging.ork"
 
 
-@pytest.fixture(autouse=True)
-def _motors(monkeypatch, tmp_path):
-    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
-    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
-    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(ORK.parent / "motors"))
+pytestmark = pytest.mark.usefixtures("ork_offline")     # tests/conftest.py
 
 
 def _event(sim, kind, branch=None):

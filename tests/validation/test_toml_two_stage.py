@@ -17,11 +17,7 @@ ORK = DATA / "ork" / "Two stage high power rocket.ork"
 TOML = DATA / "staged_toml" / "sustainer.toml"
 
 
-@pytest.fixture(autouse=True)
-def _motors(monkeypatch, tmp_path):
-    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
-    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
-    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(ORK.parent / "motors"))
+pytestmark = pytest.mark.usefixtures("ork_offline")     # tests/conftest.py
 
 
 @pytest.mark.filterwarnings("ignore::UserWarning")
