@@ -82,7 +82,7 @@ def _stages(doc, config: str | None) -> list:
         cfg = None
     out = []
     for i, st in enumerate(doc.rocket.stages):
-        mp = ormass.rocket_mass([st])
+        mp = ormass.rocket_mass([st], parallel=False)
         entry = {"index": i, "name": st.name, "x_m": st.x, "length_m": st.length, "dry_mass_kg": mp.mass,
                  "dry_cg_m": mp.cg_x, "motors": []}
         if cfg is not None:
@@ -91,6 +91,19 @@ def _stages(doc, config: str | None) -> list:
             if i > 0:
                 event, delay = _separation(st, cfg.config_id)
                 entry.update(separation=event, separation_delay_s=delay)
+        out.append(entry)
+    for pod in doc.rocket.pods:                  # parallel boosters: all instances together
+        from ironbark_opt.openrocket.parallel import separation
+        mp = ormass.subtree_mass(pod)
+        entry = {"index": pod.stage, "name": pod.name, "x_m": pod.x, "length_m": pod.length, "dry_mass_kg": mp.mass,
+                 "dry_cg_m": mp.cg_x, "instances": pod.geo["instances"], "radial_distance_m": pod.geo["radius"],
+                 "motors": []}
+        if cfg is not None:
+            entry["motors"] = [{"designation": m.designation, "mount": mount.name, "ignition": m.ignition_event,
+                                "ignition_delay_s": m.ignition_delay} for mount, m in cfg.motors
+                               if mount.stage == pod.stage]
+            event, delay = separation(pod, cfg.config_id)
+            entry.update(separation=event, separation_delay_s=delay)
         out.append(entry)
     return out
 
@@ -128,7 +141,9 @@ def _human(info: dict) -> str:
         motors = ", ".join(f"{m['designation']} in '{m['mount']}' on {m['ignition']} + {m['ignition_delay_s']:g} s"
                            for m in st["motors"]) or "no motor"
         sep = f"; separates on {st['separation']} + {st['separation_delay_s']:g} s" if "separation" in st else ""
-        lines.append(f"  {st['index']}: {st['name']}, x = {st['x_m']:.4f}..{st['x_m'] + st['length_m']:.4f} m, "
+        pods = (f" ({st['instances']} parallel boosters at {st['radial_distance_m']:.4f} m from the axis)"
+                if "instances" in st else "")
+        lines.append(f"  {st['index']}: {st['name']}{pods}, x = {st['x_m']:.4f}..{st['x_m'] + st['length_m']:.4f} m, "
                      f"dry {st['dry_mass_kg']:.4f} kg (CG {st['dry_cg_m']:.4f} m); {motors}{sep}")
     lines.append("components:")
     for c in info["components"]:

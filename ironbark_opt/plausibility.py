@@ -105,7 +105,8 @@ def check_rocket_file(rf, rocket, motor, file_motor=None) -> None:
                       names=(pre + "I_axial", pre + "I_transverse"))
     else:
         check_inertia(I, source=src, field=pre + "inertia")
-    check_motor(motor, file_motor, rf.motor, length, source=src)
+    # several motors (air-start, parallel boosters): their sum is not the first file's motor
+    check_motor(motor, None if rf.motor.airstart else file_motor, rf.motor, length, source=src)
     guides = rocket.rail_guides()
     if guides is not None:
         for name, x in zip(("x_fore", "x_aft"), guides):

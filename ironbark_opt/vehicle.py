@@ -127,6 +127,9 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
         Apply the ambient-pressure thrust correction when the motor's nozzle
         exit area is known.
     """
+    if rf.stages:
+        raise InputError("a rocket file with [[stage]] tables flies through load_setup (a staged setup)",
+                         source=rf.source, field="stage")
     motor = load_motor_for(rf.motor)
     if not pressure_correction and motor.nozzle_exit_area is not None:
         motor = dataclasses.replace(motor, nozzle_exit_area=None)
@@ -203,13 +206,20 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     if Path(path).suffix.lower() == ".ork":
         from ironbark_opt.openrocket import read_ork
         doc = read_ork(_existing(path))
-        if len(doc.rocket.stages) > 1:
+        if len(doc.rocket.stages) > 1 or doc.rocket.pods:
+            from ironbark_opt.openrocket.parallel import parallel_setup
             from ironbark_opt.openrocket.staging import staged_setup
             if table is not None:
                 raise InputError("--table applies to single-stage rockets (each stage of a staged rocket "
                                  "flies its own aerodynamics)", source=path, field="table")
-            return staged_setup(doc, config, **kwargs)
+            return (parallel_setup if doc.rocket.pods else staged_setup)(doc, config, **kwargs)
     rf = load_rocket_file(path, config=config)
+    if rf.stages:
+        from ironbark_opt.staged_vehicle import staged_setup_from_toml
+        if table is not None:
+            raise InputError("--table applies to single-stage rockets (give the stack's table in [[stage]] "
+                             "and the sustainer's in [aero])", source=path, field="table")
+        return staged_setup_from_toml(rf, **kwargs)
     if table is not None:
         table = Path(table)
         stem = table.with_suffix("") if table.suffix.lower() in (".csv", ".json") else table

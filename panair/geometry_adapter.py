@@ -43,9 +43,10 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
         sec = fs.section
         section = {"square": "square", "rounded": "rounded", "airfoil": "airfoil",
                    "double_wedge": "double_wedge"}[sec.kind]
-        # roll: with an even count no fin lies in the x-z plane (a half model is
-        # possible); an odd count is meshed with a fin on top (full model)
-        roll = np.pi / fs.count if fs.count % 2 == 0 else 0.0
+        # the fin set's roll angle (FinSet.roll_angle: from +y toward +z; by default no
+        # fin in the x-z plane for an even count, a fin on top for an odd one) as the
+        # mesh's angle from +z toward +y
+        roll = (np.pi / 2 - fs.roll_angle) % (2 * np.pi)
         if outline is None:
             root, tip, sweep = fs.root_chord, fs.tip_chord, fs.sweep_length
         else:

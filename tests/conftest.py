@@ -23,3 +23,14 @@ def pytest_configure(config):
     for var, prefix in (("MPLCONFIGDIR", "mpl"), ("IPYTHONDIR", "ipython"), ("JUPYTER_RUNTIME_DIR", "jupyter")):
         if var not in os.environ:
             os.environ[var] = tempfile.mkdtemp(prefix=f"ironbark-test-{prefix}-")
+
+
+import pytest  # noqa: E402
+
+
+@pytest.fixture
+def ork_offline(monkeypatch, tmp_path):
+    """OpenRocket fixtures flown offline: motors from tests/data/ork/motors, a fresh cache."""
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(DATA / "ork" / "motors"))

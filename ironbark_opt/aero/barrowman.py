@@ -409,7 +409,7 @@ def interference_factor(span: float, body_radius: float) -> float:
     return 1.0 + r / (s + r)
 
 
-def single_fin_cn_alpha(planform: FinPlanform, mach, reference_area: float):
+def single_fin_cn_alpha(planform: FinPlanform, mach, reference_area: float, section_slope=None):
     """Slope of one isolated fin, angle to its plane [1/rad]; symbolic-safe in ``mach``.
 
     Subsonic, [N13] eq. 3.40 (Diederich; [B66] eq. 57 at M = 0):
@@ -417,6 +417,12 @@ def single_fin_cn_alpha(planform: FinPlanform, mach, reference_area: float):
     Supersonic (Ackeret, see module notes): 4/beta A_fin/A_ref.  Bridged by
     :func:`transonic_blend`.  planform : FinPlanform; mach [-];
     reference_area [m^2].
+
+    ``section_slope``: a callable c(M) [1/rad], the 2-D section lift-curve slope
+    (:mod:`ironbark_opt.rocket.fin_files`; numeric ``mach`` only) replacing the
+    thin-airfoil 2 pi / beta in Diederich's formula (as RocketPy does for airfoil
+    fins): 2 pi s^2/A_ref / (1 + sqrt(1 + (2 pi s^2/(A_fin cos G_c c(M)))^2)),
+    the thin airfoil's c = 2 pi / beta giving eq. 3.40 back.  Subsonic branch only.
     """
     aref = _positive(reference_area, "reference_area", "m^2")
     s2 = planform.span ** 2
@@ -425,6 +431,17 @@ def single_fin_cn_alpha(planform: FinPlanform, mach, reference_area: float):
     a_sup = 4.0 * planform.area / aref
 
     def sub(M):
+        if section_slope is not None:
+            if m.is_symbolic(M):
+                raise InputError("a fin lift-curve or polar file needs numeric Mach numbers (the flight "
+                                 "tabulates the fin slopes)", field="lift_curve")
+            M = np.asarray(M, dtype=float)
+            h = 1e-5
+            c = section_slope(M)
+            dc = (section_slope(M + h) - section_slope(np.maximum(M - h, 0.0))) / (M + h - np.maximum(M - h, 0.0))
+            r = 2.0 * math.pi * k / c
+            q = np.sqrt(1.0 + r * r)
+            return a_sub / (1.0 + q), a_sub / (1.0 + q) ** 2 * (r / q) * (2.0 * math.pi * k * dc / (c * c))
         q = m.sqrt(1.0 + (1.0 - M * M) * k * k)
         return a_sub / (1.0 + q), a_sub * M * k * k / (q * (1.0 + q) ** 2)
 
@@ -458,7 +475,7 @@ def fin_cp_fraction(aspect_ratio: float, mach):
 
 
 def fins(planform: FinPlanform, count: int, x_root_le: float, body_radius: float,
-         reference_area: float, mach=0.0) -> Lift:
+         reference_area: float, mach=0.0, section_slope=None) -> Lift:
     """Fin set in the presence of the body ([B66] eq. 57-59, 76-78; [N13] §3.2.2).
 
     CN_alpha = K_T(B) f_N (N/2) (CN_alpha)_1: fin-in-body factor K_T(B),
@@ -481,10 +498,13 @@ def fins(planform: FinPlanform, count: int, x_root_le: float, body_radius: float
         Body radius at the fins.
     reference_area : float [m^2]
     mach : float, array or CasADi [-]
+    section_slope : callable or None
+        The section's lift-curve slope c(M) [1/rad] from a file
+        (:func:`single_fin_cn_alpha`); None: thin airfoil.
     """
     f_n = fin_count_factor(count)
     k_tb = interference_factor(planform.span, body_radius)
-    cna = k_tb * f_n * 0.5 * int(count) * single_fin_cn_alpha(planform, mach, reference_area)
+    cna = k_tb * f_n * 0.5 * int(count) * single_fin_cn_alpha(planform, mach, reference_area, section_slope)
     frac = fin_cp_fraction(planform.aspect_ratio, mach)
     x_cp = _number(x_root_le, "x_root_le") + planform.mac_x_le + frac * planform.mac_length
     return Lift(cna, x_cp, "fins")

@@ -11,6 +11,10 @@ software* (OpenRocket technical documentation, 2013), sec. 3.4:
 - nose cone: subsonic 0.8 sin^2(phi) with phi the joint half-angle of the
   nose profile (eq. 3.81); above M = 1 the same value times q_stag/q
   (rough supersonic continuation, a stand-in until the panel solver);
+- a blunt (flat) forward face, e.g. a booster's front after separation, whose
+  body starts with a tube: the stagnation pressure on it, 0.85 q_stag/q on
+  its area pi r_front^2 (eq. 3.87; Hoerner, *Fluid-Dynamic Drag*, 1965,
+  ch. 3, the flat-faced cylinder; eq. 3.81 at phi = 90 deg gives 0.8 subsonic);
 - fin leading edges, square: 0.85 q_stag/q (eq. 3.87), on the frontal area
   thickness x span x count, times cos^2 of the leading-edge sweep;
 - streamlined fin sections (rounded, airfoil, bevelled double wedge): no
@@ -81,7 +85,8 @@ def _joint_half_angle(comp) -> float:
 
 def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.ndarray:
     """Zero-lift pressure drag a potential-flow solution cannot have [-] on the
-    rocket's reference area vs Mach (numeric-only): blunt nose joints (eq. 3.81),
+    rocket's reference area vs Mach (numeric-only): a flat forward face (eq. 3.87),
+    blunt nose joints (eq. 3.81),
     boattails and other contracting transitions as separated flow with
     base-like pressure on the annulus (eq. 3.88), fin leading edges (eq. 3.87,
     3.89).  Fin trailing edges are base drag (:class:`~ironbark_opt.aero.base_drag.BaseDrag`).
@@ -96,6 +101,10 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.nd
     a_ref = rocket.reference_area()
     ca = np.zeros_like(m)
     q = stagnation_ratio(m)
+    front = min(rocket.body_components(), key=lambda c: c.x)
+    r_front = 0.0 if isinstance(front, NoseCone) else float(getattr(front, "fore_radius", getattr(front, "radius", 0.0)))
+    if r_front > 0.0:                       # blunt forward face (eq. 3.87, Hoerner ch. 3)
+        ca += 0.85 * q * np.pi * r_front ** 2 / a_ref
     for comp in rocket.body_components():
         if isinstance(comp, NoseCone):
             phi = _joint_half_angle(comp)

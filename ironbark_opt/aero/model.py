@@ -47,6 +47,8 @@ class FinGeometry:
     x_root_le: float
     body_radius: float
     cant: float
+    #: section lift data from a file (``FinSet.section_lift``), None: thin airfoil
+    section_lift: tuple | None = None
 
 
 @dataclass(frozen=True)
@@ -61,9 +63,10 @@ class LiftGeometry:
     def components(self, mach, reference_area: float):
         """Barrowman Lift components at ``mach`` (symbolic-safe)."""
         comps = list(self.bodies)
+        from ironbark_opt.rocket.fin_files import section_slope
         for f in self.fins:
             comps.append(barrowman.fins(f.planform, f.count, f.x_root_le, f.body_radius,
-                                        reference_area, mach))
+                                        reference_area, mach, section_slope(f.section_lift)))
         return comps
 
 
@@ -250,7 +253,7 @@ def lift_geometry(rocket) -> LiftGeometry:
         else:
             plan = barrowman.polygon_planform(pts)
         r_body = float(rocket.radius_at(fs.x + 0.5 * float(pts[-1, 0])))   # at mid root chord
-        fins.append(FinGeometry(plan, fs.count, fs.x, r_body, fs.cant))
+        fins.append(FinGeometry(plan, fs.count, fs.x, r_body, fs.cant, fs.section_lift))
     if not bodies and not fins:
         raise InputError("the rocket has no nose, transition or fins: no normal force", field="components")
     return LiftGeometry(tuple(bodies), tuple(fins), plan_area, plan_moment / plan_area if plan_area else 0.0)

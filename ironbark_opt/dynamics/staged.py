@@ -60,6 +60,14 @@ class StagedSetup:
         from its own front end; flown to its landing point when given.
     booster_x : float [m]
         The booster's front end aft of the stack's nose tip.
+    booster_burnout : float [s] or None
+        Parallel boosters: their motors' burnout (unscaled), where the stack's
+        boost ends (the stack's own motor, the core's, burns on); None: the
+        stack motor's burnout.
+    parallel : bool
+        Parallel boosters (:mod:`ironbark_opt.openrocket.parallel`): the core is the
+        "sustainer", lit at launch, and the stack keeps its thrust between the
+        boosters' burnout and the separation.
     """
 
     stack: object
@@ -69,6 +77,11 @@ class StagedSetup:
     sustainer_name: str = "sustainer"
     booster: object = None
     booster_x: float = 0.0
+    booster_burnout: float | None = None
+    parallel: bool = False
+    #: Cd x area [m^2] of the booster tumbling (:func:`ironbark_opt.aero.tumble.tumble_cd_area`),
+    #: flown when it is statically unstable at separation; None: never tumbles.
+    booster_tumble_cd_area: float | None = None
     #: Launch environment shared by every vehicle: given (e.g. through
     #: ``dataclasses.replace(staged, atmosphere=..., site_elevation=..., latitude=...)``,
     #: as the CLI does for a forecast), they replace the vehicles' own.
@@ -104,6 +117,11 @@ class StagedSetup:
     def nominal_parameters(self, **overrides) -> np.ndarray:
         return self.stack.nominal_parameters(**overrides)
 
+    @property
+    def stack_burnout(self) -> float:
+        """End of the stack's boost [s, unscaled]: the lower stage's or the boosters' burnout."""
+        return float(self.booster_burnout if self.booster_burnout is not None else self.stack.motor.burn_time)
+
     def __getattr__(self, name):
         return _not_for_staged(name)
 
@@ -127,7 +145,8 @@ class StagedFlightModel:
         self.stack = FlightModel(setup.stack, self.steps, jit=jit)
         sus = setup.sustainer
         self.rhs = {"rail": self.stack.rhs["rail"], "boost": self.stack.rhs["boost"],
-                    "stack_coast": self.stack.rhs["coast"],
+                    # parallel boosters: the core burns on between their burnout and separation
+                    "stack_coast": self.stack.rhs["boost" if setup.parallel else "coast"],
                     "sustainer_boost": rhs_mod.build(sus, "boost"), "coast": rhs_mod.build(sus, "coast")}
         self._step = {k: rk4_step(self.rhs[k], f"step_{k}") for k in ("sustainer_boost", "coast", "stack_coast")}
         b2 = float(sus.motor.motor.burn_time)
@@ -167,6 +186,14 @@ class StagedFlightModel:
                 if cd_area > 0:
                     fns[i] = phase_trajectory(rk4_step(rhs_mod.build(setup, "descent", cd_area=cd_area),
                                                        f"step_{key}_d{i}"), 100, f"traj_{key}_d{i}")
+            tumble = self.setup.booster_tumble_cd_area if key == "booster" else None
+            if tumble:
+                # a statically unstable booster tumbles: a point mass with the tumbling drag
+                # (OpenRocket's BasicTumbleStepper; Niskanen 2013 sec. 3.5), chutes adding theirs
+                fns["tumble_stages"] = [(a, cd + tumble) for a, cd in stages]
+                for i, (_, cd_area) in enumerate(fns["tumble_stages"]):
+                    fns[f"t{i}"] = phase_trajectory(rk4_step(rhs_mod.build(setup, "descent", cd_area=cd_area),
+                                                             f"step_{key}_t{i}"), 100, f"traj_{key}_t{i}")
             cache[key] = fns
         return cache[key]
 
@@ -177,14 +204,16 @@ class StagedFlightModel:
         0.02 s, without a chute).  Events at the first sample past them; the landing
         interpolated linearly between samples."""
         fn = self._down_functions(key)
-        stages, out = fn["stages"], {}
+        tumbling = self.tumbling(key, x, t, p)
+        stages, out = fn["tumble_stages" if tumbling else "stages"], {"tumbling": tumbling}
         for k in range(0 if to_apogee else 1, len(stages) + 1):
             if k == 0:
-                traj, dt = fn["coast"], 0.01
+                traj, dt = (fn["t0"], 0.05) if tumbling else (fn["coast"], 0.01)
                 done = (lambda X: np.array(self.stack.vz_l.map(X.shape[1])(X)).ravel() <= 0)
             else:
                 alt_end = stages[k][0] if k < len(stages) else 0.0
-                traj, dt = (fn["coast"], 0.02) if stages[k - 1][1] <= 0 else (fn[k - 1], 0.05)
+                traj, dt = (fn["coast"], 0.02) if stages[k - 1][1] <= 0 else \
+                    (fn[f"t{k - 1}" if tumbling else k - 1], 0.05)
                 done = (lambda X, a=alt_end: X[2] <= a)
             for _ in range(3000):
                 X = np.array(traj(x, t, t + 100 * dt, p))
@@ -203,6 +232,15 @@ class StagedFlightModel:
             else:
                 raise SolverError(f"the {key} did not reach the ground within the time limit")
         return out
+
+    def tumbling(self, key: str, x, t, p) -> bool:
+        """Does ``key``'s vehicle tumble from state ``x`` at ``t``: the booster with a
+        tumbling drag given and its static margin at that state negative."""
+        fn = self._down_functions(key)
+        if "tumble_stages" not in fn:
+            return False
+        i = rhs_mod.OUTPUT_NAMES.index("static_margin_cal")
+        return float(np.array(fn["coast_rhs"](x, t, p)[1]).ravel()[i]) < 0.0
 
     def fly_booster(self, x_stack, t_s, p) -> dict:
         """The booster from separation (its CG placed from the stack's by the rigid
@@ -223,7 +261,9 @@ class StagedFlightModel:
         xl = d["x_landing"]
         return dict(booster_apogee_agl_m=d["apogee_agl"], booster_apogee_time_s=d["t_apogee"],
                     booster_landing_time_s=d["t_landing"], booster_landing_east_m=float(xl[0]),
-                    booster_landing_north_m=float(xl[1]))
+                    booster_landing_north_m=float(xl[1]),
+                    # tumbling drag flown (0: it flew stable, 6-DOF)
+                    booster_tumble_cd_area_m2=float(self.setup.booster_tumble_cd_area) if d["tumbling"] else 0.0)
 
     def final_state_symbolic(self, p, T, t_rail_guess: float):
         """MX state of the sustainer at time ``T`` [s] in its coast, through every
@@ -234,7 +274,7 @@ class StagedFlightModel:
         s = P["burn_time_scale"]
         t_r = st.rail_exit_root(t_rail_guess, p)
         x_r = st.trajectory["rail"](st.initial_state(p), 0, t_r, p)[:, -1]
-        t_b1 = float(self.setup.stack.motor.burn_time) * s
+        t_b1 = self.setup.stack_burnout * s
         X_b = st.trajectory["boost"](x_r, t_r, t_b1, p)
         x, t_s = X_b[:, -1], t_b1
         if self.setup.separation_delay > 0:
@@ -278,7 +318,7 @@ class StagedFlightModel:
         s = p[params.index("burn_time_scale")]
         x0 = st._x0(p)
         t_r = st.rail_exit(p)
-        t_b1 = float(self.setup.stack.motor.burn_time) * s
+        t_b1 = self.setup.stack_burnout * s
         X_rail = np.array(st._run["rail"](x0, 0.0, t_r, p))
         X_boost = np.array(st._run["boost"](X_rail[:, -1], t_r, t_b1, p))
         parts_t = [np.array([0.0]), np.linspace(0, t_r, X_rail.shape[1] + 1)[1:],

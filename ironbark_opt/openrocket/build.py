@@ -38,6 +38,10 @@ def _single_stage(doc: OrkDocument, what: str, instead: str) -> None:
         s = doc.rocket.stages[1]
         raise InputError(f"{what} not supported yet (stage '{s.name}'); remove the lower stages "
                          f"to {instead}", source=doc.path, field=s.path)
+    if doc.rocket.pods:
+        s = doc.rocket.pods[0]
+        raise InputError(f"parallel boosters '{s.name}': {what} not supported yet for them (the flight "
+                         f"commands, e.g. 'simulate', fly them from the .ork)", source=doc.path, field=s.path)
 
 
 def check_flyable(doc: OrkDocument, config) -> None:
@@ -83,7 +87,7 @@ def geometry(doc: OrkDocument) -> Rocket:
     """The Rocket (geometry; mass from :meth:`OrkDocument.dry_mass_properties`)."""
     comps = [convert.body_component(c) for c in doc.rocket.body()]
     guide = None
-    for c in doc.rocket.components():
+    for c in doc.rocket.core_components():          # parallel boosters: openrocket.parallel
         if c.kind in FINS:
             comps.append(convert.fin_set(c))
         elif c.kind == "railbutton" and guide is None:
@@ -91,9 +95,9 @@ def geometry(doc: OrkDocument) -> Rocket:
             if n >= 2 and sep > 0:
                 x0 = c.x + 0.5 * c.length
                 guide = RailButtons(x_fore=x0, x_aft=x0 + (n - 1) * sep, height=c.geo["height"],
-                                    name=c.name)
+                                    name=c.name, angle=math.radians(c.element.number("angleoffset", 0.0)))
     if guide is None:
-        for c in doc.rocket.components():
+        for c in doc.rocket.core_components():
             if c.kind == "launchlug" and c.geo["radius"] > c.geo["thickness"] >= 0:
                 guide = LaunchLug(x=c.x, length=c.geo["length"], outer_radius=c.geo["radius"],
                                   inner_radius=c.geo["radius"] - c.geo["thickness"], name=c.name)
@@ -111,7 +115,7 @@ def recovery(doc: OrkDocument, config_id: str = "") -> tuple:
     down (after ``deploydelay``); ``never`` and lower-stage events are skipped.
     """
     out = []
-    for c in doc.rocket.components():
+    for c in doc.rocket.core_components():
         if c.kind not in ("parachute", "streamer"):
             continue
         g = c.geo

@@ -27,8 +27,9 @@ FINS = ("trapezoidfinset", "ellipticalfinset", "freeformfinset")
 RINGS = ("innertube", "tubecoupler", "centeringring", "bulkhead", "engineblock")
 MASS_OBJECTS = ("masscomponent", "parachute", "streamer", "shockcord")
 EXTERNAL = ("launchlug", "railbutton", "tubefinset")
-UNSUPPORTED = {"parallelstage": "parallel boosters (parallelstage)", "podset": "pods (podset)",
-               "boosterset": "parallel boosters (boosterset)"}
+#: parallel boosters (OpenRocket ``ParallelStage``; ``boosterset`` in older files)
+PARALLEL = ("parallelstage", "boosterset")
+UNSUPPORTED = {"podset": "pods (podset)"}
 KNOWN = BODY + FINS + RINGS + MASS_OBJECTS + EXTERNAL + ("stage",)
 
 #: OpenRocket ``ClusterConfiguration`` names -> number of tubes

@@ -92,9 +92,14 @@ def fin_set(comp: OrkComponent, *, with_density: float | None = None):
     section = FinSection(kind="square" if with_density is not None
                          else _SECTIONS.get(g["section"], "square"))
     thickness = g["thickness"] if g["thickness"] > 0 else 1e-6
+    el = comp.element
+    rotation = el.number("rotation", None) if el.child("rotation") is not None else \
+        el.number("angleoffset", None) if el.child("angleoffset") is not None else None
     common = dict(count=g["count"], x=comp.x, thickness=thickness, cant=g["cant"],
                   section=section, density=with_density, name=comp.name,
-                  roughness=g.get("roughness"))
+                  roughness=g.get("roughness"),
+                  # OpenRocket's fin rotation: the first fin's angle from +y toward +z [deg]
+                  roll=None if rotation is None else math.radians(rotation))
     try:
         if comp.kind == "trapezoidfinset":
             return TrapezoidalFins(root_chord=g["root_chord"], tip_chord=g["tip_chord"],

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from ironbark_opt.openrocket import convert
-from ironbark_opt.openrocket.components import OrkComponent
+from ironbark_opt.openrocket.components import PARALLEL, OrkComponent
 from ironbark_opt.rocket.mass import MassProperties, combine_properties
 
 
@@ -211,8 +211,11 @@ def _moved(mp: MassProperties, cg_x: float) -> MassProperties:
     return MassProperties(mp.mass, cg_x, mp.inertia)
 
 
-def subtree_mass(comp: OrkComponent) -> MassProperties:
-    """``comp`` and everything below it, with OpenRocket's override rules."""
+def subtree_mass(comp: OrkComponent, parallel: bool = True) -> MassProperties:
+    """``comp`` and everything below it, with OpenRocket's override rules
+    (``parallel=False``: without parallel boosters, the core after their separation)."""
+    if not parallel and comp.kind in PARALLEL:
+        return _zero(comp.x)
     own = own_mass(comp)
     if comp.override_mass is not None and not comp.override_mass_subtree:
         own = own.scaled_to(comp.override_mass)
@@ -220,16 +223,31 @@ def subtree_mass(comp: OrkComponent) -> MassProperties:
         own = _moved(own, comp.x + comp.override_cg)
     if comp.override_mass is not None and comp.override_mass_subtree:
         # the override replaces this component and all its subcomponents
-        total = combine_properties([own] + [subtree_mass(c) for c in comp.children])
+        total = combine_properties([own] + [subtree_mass(c, parallel) for c in comp.children])
         total = total.scaled_to(comp.override_mass) if total.mass > 0 else \
             MassProperties(comp.override_mass, comp.x + 0.5 * comp.length, np.zeros((3, 3)))
     else:
-        total = combine_properties([own] + [subtree_mass(c) for c in comp.children])
+        total = combine_properties([own] + [subtree_mass(c, parallel) for c in comp.children])
         if total.mass == 0.0:
             total = _zero(comp.x + 0.5 * comp.length)
     if comp.override_cg is not None and comp.override_cg_subtree:
         total = _moved(total, comp.x + comp.override_cg)
+    if comp.kind in PARALLEL:
+        total = parallel_instances(total, comp.geo["instances"], comp.geo["radius"])
     return total
+
+
+def parallel_instances(mp: MassProperties, count: int, radius: float) -> MassProperties:
+    """``count`` copies of ``mp`` evenly spaced around the axis at ``radius`` [m]
+    (parallel boosters): mass x count, CG on the axis, and by the parallel-axis
+    theorem roll inertia + count m r^2 and each transverse inertia + count m r^2 / 2
+    (the sum of m r^2 cos^2 over evenly spaced angles is count m r^2 / 2 for
+    count >= 2).  One copy (count 1) stays on the axis (its lateral CG offset neglected)."""
+    if count <= 1 or mp.mass <= 0.0:
+        return mp
+    m, r2 = mp.mass, radius * radius
+    extra = np.diag([count * m * r2, count * m * r2 / 2.0, count * m * r2 / 2.0])
+    return MassProperties(count * m, mp.cg_x, count * np.asarray(mp.inertia) + extra)
 
 
 def component_table(stages) -> list[tuple[OrkComponent, MassProperties, MassProperties]]:
@@ -241,6 +259,7 @@ def component_table(stages) -> list[tuple[OrkComponent, MassProperties, MassProp
     return out
 
 
-def rocket_mass(stages) -> MassProperties:
-    """Dry mass properties (no motors) of the given stages."""
-    return combine_properties([subtree_mass(s) for s in stages])
+def rocket_mass(stages, parallel: bool = True) -> MassProperties:
+    """Dry mass properties (no motors) of the given stages (``parallel=False``:
+    without their parallel boosters)."""
+    return combine_properties([subtree_mass(s, parallel) for s in stages])

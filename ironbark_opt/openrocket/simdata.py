@@ -86,6 +86,20 @@ class OrkSimulation:
     def has_data(self) -> bool:
         return bool(self.branch_elements)
 
+    def events(self, branch: str | None = None) -> list[tuple[float, str, str]]:
+        """OpenRocket's flight events of a branch (default the first):
+        ``(time [s], type, source component id)`` in file order."""
+        if not self.branch_elements:
+            return []
+        el = self.branch_elements[branch if branch is not None else next(iter(self.branch_elements))]
+        out = []
+        for ev in el.children("event"):
+            try:
+                out.append((float(ev.attr("time", "nan")), ev.attr("type", ""), ev.attr("source", "")))
+            except ValueError:
+                raise ev.error(f"event time must be a number, got {ev.attr('time')!r}") from None
+        return out
+
     def data(self) -> pd.DataFrame | None:
         """The first (sustainer) branch of stored flight data, or None."""
         if not self.branch_elements:

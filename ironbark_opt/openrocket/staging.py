@@ -81,12 +81,11 @@ def _shifted(comp, dx: float):
     return dataclasses.replace(comp, x=comp.x - dx, children=[_shifted(c, dx) for c in comp.children])
 
 
-def booster_setup(doc: OrkDocument, cfg, spec_b, launch, **setup_kwargs):
-    """The booster alone after separation (its spent motor aboard), in its own
-    frame: x from the booster's front end, ``x0`` [m aft of the stack's nose tip]
-    returned with it."""
+def booster_file(doc: OrkDocument, cfg, spec_b, launch):
+    """The booster alone after separation (its spent motor aboard) as a RocketFile in
+    its own frame: x from the booster's front end; ``x0`` [m aft of the stack's nose
+    tip] returned with it."""
     from ironbark_opt.rocket.toml_io import RocketFile
-    from ironbark_opt.vehicle import setup_from_file
 
     stage = doc.rocket.stages[1]
     x0 = stage.x
@@ -95,41 +94,29 @@ def booster_setup(doc: OrkDocument, cfg, spec_b, launch, **setup_kwargs):
     aero = AeroSpec(table=_aero_table_path(rocket, dataclasses.replace(
         sub, path=doc.path.with_name(f"{doc.path.stem}-booster{doc.path.suffix}"))))
     spec = dataclasses.replace(spec_b, nozzle_x=spec_b.nozzle_x - x0)
-    rf = RocketFile(rocket, spec, aero, launch, recovery(sub, cfg.config_id), BallastSpec(), doc.path)
-    setup = setup_from_file(rf, **setup_kwargs)
-    return dataclasses.replace(setup, name=f"{doc.name} ({stage.name})"), x0
+    return RocketFile(rocket, spec, aero, launch, recovery(sub, cfg.config_id), BallastSpec(), doc.path), x0
 
 
 def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
-    """The :class:`StagedSetup` of a two-stage .ork configuration (numeric-only)."""
-    from ironbark_opt.dynamics.staged import StagedSetup
-    from ironbark_opt.motors.composite import CompositeMotor, DelayedMotor, UnlitMotor
+    """The :class:`StagedSetup` of a two-stage .ork configuration (numeric-only;
+    assembled by :func:`ironbark_opt.staged_vehicle.assemble_two_stage`)."""
     from ironbark_opt.rocket.toml_io import RocketFile
-    from ironbark_opt.vehicle import load_motor_for, setup_from_file
+    from ironbark_opt.staged_vehicle import assemble_two_stage
 
     cfg = doc.config(config)
     ev = stage_events(doc, cfg)
     spec_b, spec_s = _motor_spec(doc, *ev["booster"]), _motor_spec(doc, *ev["sustainer"])
     sim = doc.simulation_for(cfg)
     launch = sim.launch if sim is not None else LaunchSpec()
-    setups = {}
+    files = {}
     for key, stages, spec in (("stack", (0, 1), spec_b), ("sustainer", (0,), spec_s)):
         sub = _stage_doc(doc, stages)
         rocket = geometry(sub).with_mass_override(ormass.rocket_mass(sub.rocket.stages))
         chutes = tuple(r for r in recovery(_stage_doc(doc, (0,)), cfg.config_id)) if key == "sustainer" else ()
         aero = AeroSpec(table=_aero_table_path(rocket, dataclasses.replace(
             sub, path=doc.path.with_name(f"{doc.path.stem}-{key}{doc.path.suffix}"))))
-        rf = RocketFile(rocket, spec, aero, launch, chutes, BallastSpec(), doc.path)
-        setups[key] = setup_from_file(rf, **setup_kwargs)
-    booster_motor, sustainer_motor = load_motor_for(spec_b), load_motor_for(spec_s)
-    stack_motor = CompositeMotor((booster_motor, UnlitMotor(sustainer_motor)), (0.0, 0.0),
-                                 (spec_b.nozzle_x, spec_s.nozzle_x), spec_b.nozzle_x)
-    delay = ev["delay"]
-    sus_motor = DelayedMotor(sustainer_motor, booster_motor.burn_time + delay)
-    # Ballast sits in the sustainer (same nose-tip origin as the stack): nominal at its dry CG.
-    nominal = {**setups["stack"].nominal, "ballast_x": setups["sustainer"].nominal["ballast_x"]}
-    stack = dataclasses.replace(setups["stack"], motor=stack_motor, name=f"{doc.name} (stack)", nominal=nominal)
-    sustainer = dataclasses.replace(setups["sustainer"], motor=sus_motor, name=doc.name)
-    booster, x0 = booster_setup(doc, cfg, spec_b, launch, **setup_kwargs)
-    return StagedSetup(stack, sustainer, delay, doc.rocket.stages[1].name, doc.rocket.stages[0].name,
-                       booster=booster, booster_x=x0)
+        files[key] = RocketFile(rocket, spec, aero, launch, chutes, BallastSpec(), doc.path)
+    booster, x0 = booster_file(doc, cfg, spec_b, launch)
+    return assemble_two_stage(files["stack"], files["sustainer"], booster, delay=ev["delay"], booster_x=x0,
+                              name=doc.name, booster_name=doc.rocket.stages[1].name,
+                              sustainer_name=doc.rocket.stages[0].name, **setup_kwargs)

@@ -12,7 +12,8 @@ it (``CenteringRing.getInnerRadius``).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
 
 from ironbark_opt.openrocket import components as oc
 from ironbark_opt.openrocket.xmlread import Element
@@ -25,11 +26,26 @@ class OrkRocket:
     name: str
     stages: list
     element: Element
+    #: parallel boosters (kind ``parallelstage``), also children of the body
+    #: component they are attached to
+    pods: list = field(default_factory=list)
 
     def components(self):
-        """All components, depth first (stages included)."""
+        """All components, depth first (stages and parallel boosters included)."""
         for s in self.stages:
             yield from s.walk()
+
+    def core_components(self):
+        """The components of the core vehicle: :meth:`components` without the
+        parallel boosters' subtrees."""
+        def walk(c):
+            if c.kind in oc.PARALLEL:
+                return
+            yield c
+            for k in c.children:
+                yield from walk(k)
+        for s in self.stages:
+            yield from walk(s)
 
     def body(self):
         """Body components in order from the nose tip."""
@@ -89,7 +105,58 @@ def _make(el: Element, x_parent: float, len_parent: float, stage: int,
     return comp
 
 
-def _children(parent: oc.OrkComponent, stage: int) -> None:
+def _parallel_stage(el: Element, parent: oc.OrkComponent, pods: list) -> oc.OrkComponent:
+    """A set of parallel boosters (OpenRocket ``ParallelStage``): its own body
+    components end to end from its front, placed on ``parent`` by its axial
+    offset; ``instancecount`` copies around the core at the radial distance
+    ``radius`` [m] (``relative``/``surface``: touching the parent's surface plus the
+    offset, as OpenRocket's ``RadiusMethod.RELATIVE``; otherwise the offset from the
+    axis).  Its stage number follows the axial stages (OpenRocket numbers stages
+    depth first; a rocket with both is refused by the staging code)."""
+    number = len(pods) + 1000          # renumbered in build_tree once the axial stages are known
+    body, cursor = [], 0.0
+    sub = el.child("subcomponents")
+    for bel in (sub.children() if sub is not None else []):
+        if bel.tag not in oc.BODY:
+            raise bel.error(f"<{bel.tag}> cannot sit directly in parallel boosters; expected a nose "
+                            f"cone, body tube or transition")
+        comp = _make(bel, 0.0, 0.0, number, body_x=cursor)
+        cursor += comp.length
+        body.append(comp)
+    if not body:
+        raise el.error("parallel boosters without a body component (nose cone, body tube, transition)")
+    x = oc.axial_position(el, cursor, parent.x, parent.length)
+    for c in body:
+        c.x += x
+    _resolve_body_radii(body)
+    r_pod = max(outer_radius(c) for c in body)
+    node = el.child("radiusoffset")
+    method = (node.attr("method") if node is not None else None) or "relative"
+    offset = el.number("radiusoffset", 0.0)
+    radius = outer_radius(parent) + r_pod + offset if method.lower() in ("relative", "surface") else offset
+    geo = {"instances": int(el.number("instancecount", 2, minimum=1)), "radius": radius,
+           "angle": math.radians(el.number("angleoffset", 0.0)), "pod_radius": r_pod,
+           "separation": _separation_settings(el)}
+    pod = oc.OrkComponent(el.tag, el.text("name") or "boosters", el.path, x, cursor, number, el, geo=geo)
+    oc.parse_overrides(pod)
+    pod.children = body
+    for c in body:
+        _children(c, number, pods)
+    pods.append(pod)
+    return pod
+
+
+def _separation_settings(el: Element) -> dict:
+    """``{config id or '': (event, delay [s])}``: OpenRocket's stage separation settings."""
+    default = ((el.text("separationevent") or "upperignition").lower(), el.number("separationdelay", 0.0))
+    out = {"": default}
+    for c in el.children("separationconfiguration"):
+        out[c.attr("configid", "")] = ((c.text("separationevent") or default[0]).lower(),
+                                       c.number("separationdelay", default[1]))
+    return out
+
+
+def _children(parent: oc.OrkComponent, stage: int, pods: list) -> None:
     sub = parent.element.child("subcomponents")
     if sub is None:
         return
@@ -97,6 +164,9 @@ def _children(parent: oc.OrkComponent, stage: int) -> None:
         if el.tag in oc.BODY or el.tag == "stage":
             raise el.error(f"<{el.tag}> cannot sit inside <{parent.kind}> "
                            f"'{parent.name}'; body components belong directly to a stage")
+        if el.tag in oc.PARALLEL:
+            parent.children.append(_parallel_stage(el, parent, pods))
+            continue
         comp = _make(el, parent.x, parent.length, stage)
         # children of a clustered inner tube exist once per tube (OpenRocket instancing)
         comp.cluster_count *= parent.cluster_count
@@ -104,11 +174,15 @@ def _children(parent: oc.OrkComponent, stage: int) -> None:
     # outer radii first (they may be the parent's inner radius), then ring insides
     for comp in parent.children:
         g = comp.geo
+        if comp.kind in oc.PARALLEL:
+            continue
         if comp.kind in oc.RINGS and g.get("outer_radius") is None:
             g["outer_radius"] = inner_radius(parent)
         if "thickness" in g and g["thickness"] is None and comp.kind in oc.RINGS:
             g["thickness"] = g["outer_radius"]          # 'auto' wall: a solid disc
     for comp in parent.children:
+        if comp.kind in oc.PARALLEL:
+            continue
         if comp.kind == "centeringring" and comp.geo["inner_radius"] is None:
             tubes = [s for s in parent.children if s.kind == "innertube"
                      and s.x < comp.x_end and s.x_end > comp.x]
@@ -116,7 +190,8 @@ def _children(parent: oc.OrkComponent, stage: int) -> None:
         # body radius under fins / lugs (the parent's outside)
         comp.geo["parent_radius"] = outer_radius(parent)
     for comp in parent.children:
-        _children(comp, stage)
+        if comp.kind not in oc.PARALLEL:
+            _children(comp, stage, pods)
 
 
 def _resolve_body_radii(body: list) -> None:
@@ -179,5 +254,8 @@ def build_tree(root: Element) -> OrkRocket:
     _resolve_body_radii(body)
     for s in stages:
         for comp in s.children:
-            _children(comp, s.stage)
+            _children(comp, s.stage, ork.pods)
+    for i, pod in enumerate(ork.pods):            # stage numbers after the axial stages
+        for c in pod.walk():
+            c.stage = len(stages) + i
     return ork

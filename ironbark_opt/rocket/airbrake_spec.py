@@ -112,18 +112,9 @@ def read_airstart(rd, items) -> tuple:
     :class:`~ironbark_opt.motors.composite.CompositeMotor`."""
     from ironbark_opt.rocket.specs import MotorSpec
 
-    if not isinstance(items, list):
-        raise rd.error("expected [[airstart]] tables", "airstart")
     out = []
-    for i, d in enumerate(items):
-        label = f"airstart[{i}]"
-        rd.check_keys(d, AIRSTART_KEYS, "airstart", i, label)
-        if not isinstance(d.get("file"), str):
-            raise rd.error("missing required key 'file' (a thrust-curve path)", "airstart", None, i,
-                           field=f"{label}.file")
-        file = (rd.path.parent / d["file"]).resolve()
-        if not file.is_file():
-            raise rd.error(f"file not found: {file}", "airstart", "file", i, field=f"{label}.file")
+    for i, d, label in rd.tables(items, "airstart", AIRSTART_KEYS):
+        file = rd.table_file(d, "airstart", i, label, "a thrust-curve path")
         des = d.get("designation")
         if des is not None and not isinstance(des, str):
             raise rd.error(f"expected a string, got {des!r}", "airstart", "designation", i, field=f"{label}.designation")

@@ -19,6 +19,7 @@ transverse moments.
 from __future__ import annotations
 
 import abc
+import math
 
 from dataclasses import dataclass, field
 from typing import Callable
@@ -56,6 +57,14 @@ class FinSet(abc.ABC):
     roughness : float [m] or None
         Surface roughness height of the fins (their finish); None: the rocket's
         ``[aero] surface_roughness``.
+    roll : float [rad] or None
+        Roll angle of the first fin, from the body's +y axis toward +z (the
+        x-z plane is the pitch plane; OpenRocket's fin rotation).  None: the
+        default layout (an even count with no fin in the pitch plane: 2 fins
+        at 0, 4 at 45 deg; an odd count with a fin on top, 90 deg).
+    section_lift : tuple or None
+        The section's lift data from a file (:mod:`ironbark_opt.rocket.fin_files`):
+        ``("curve", (mach, cl_alpha))`` or ``("polar", a0)``; None: thin airfoil.
     """
 
     count: int = 4
@@ -67,6 +76,15 @@ class FinSet(abc.ABC):
     mass: float | None = None
     name: str = "fins"
     roughness: float | None = None
+    roll: float | None = None
+    section_lift: tuple | None = None
+
+    @property
+    def roll_angle(self) -> float:
+        """The first fin's roll angle [rad] (``roll`` or the default layout)."""
+        if self.roll is not None:
+            return float(self.roll)
+        return math.pi / 2 - math.pi / self.count if self.count % 2 == 0 else math.pi / 2
 
     def _check_common(self) -> None:
         if isinstance(self.count, bool) or not isinstance(self.count, (int, np.integer)) \

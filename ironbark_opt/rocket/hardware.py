@@ -70,6 +70,10 @@ class RailButtons:
         Standoff of the button from the body surface (drag and meshing).
     mass_each : float [kg]
     name : str
+    angle : float [rad] or None
+        Angular position of the buttons around the body, from its +y axis toward
+        +z (the fin sets' ``roll`` convention; OpenRocket's angle offset).  None:
+        point masses on the axis.
     """
 
     x_fore: float = 0.0
@@ -77,6 +81,7 @@ class RailButtons:
     height: float = 0.0
     mass_each: float = 0.0
     name: str = "rail buttons"
+    angle: float | None = None
 
     def __post_init__(self):
         x1 = v.nonnegative(self.x_fore, "x_fore")
@@ -92,12 +97,25 @@ class RailButtons:
         """``(x_fore, x_aft)`` [m] of the points that ride the rail."""
         return self.x_fore, self.x_aft
 
-    def mass_properties(self) -> MassProperties:
-        """Two on-axis point masses (numeric-only)."""
+    def mass_properties(self, radius_at=None) -> MassProperties:
+        """Two point masses (numeric-only): on the axis, or with ``angle`` (and the
+        body's ``radius_at(x)`` [m]) at radius r = body radius + height/2 in the
+        direction (y, z) = r (cos angle, sin angle).  The inertia is taken about the
+        axis point at the buttons' mean x (their small lateral CG offset is
+        neglected, as for every component): I = sum m (|d|^2 1 - d d^T),
+        d = (x_i - x_mean, y, z), so the roll inertia gains 2 m r^2 and the product
+        I_yz = -2 m y z appears (a button off the pitch or yaw plane)."""
         m = 2.0 * self.mass_each
         cg = 0.5 * (self.x_fore + self.x_aft)
-        it = 2.0 * self.mass_each * (0.5 * (self.x_aft - self.x_fore)) ** 2
-        return MassProperties.axisymmetric(m, cg, it, 0.0)
+        half = 0.5 * (self.x_aft - self.x_fore)
+        if self.angle is None or radius_at is None:
+            return MassProperties.axisymmetric(m, cg, self.mass_each * 2 * half ** 2, 0.0)
+        inertia = np.zeros((3, 3))
+        for x in (self.x_fore, self.x_aft):
+            r = float(radius_at(x)) + 0.5 * self.height
+            d = np.array([x - cg, r * np.cos(self.angle), r * np.sin(self.angle)])
+            inertia += self.mass_each * (d @ d * np.eye(3) - np.outer(d, d))
+        return MassProperties(m, cg, inertia)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -168,7 +168,7 @@ class Rocket:
         """``(name, MassProperties)`` of every component's build-up (numeric-only)."""
         out = []
         for c in self.components:
-            mp = c.mass_properties(self.radius_at) if isinstance(c, FinSet) \
+            mp = c.mass_properties(self.radius_at) if isinstance(c, (FinSet, RailButtons)) \
                 else c.mass_properties()
             out.append((c.name, mp))
         return out

@@ -28,13 +28,16 @@ from ironbark_opt.rocket.specs import (GRAIN_KEYS, MOTOR_OVERRIDE_KEYS, AeroSpec
 #: largest magnitude accepted for any number (guards overflow in the mass sums)
 MAX_MAGNITUDE = 1e9
 
-TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart")
+TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart",
+            "stage")
+STAGE_KEYS = ("file", "name", "separation_delay", "table", "drag_power_off", "drag_power_on")
 ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
 _BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass",
          "finish", "surface_roughness")
 _FINS = ("type", "name", "x", "count", "thickness", "cant_deg", "section", "le_bevel",
-         "te_bevel", "material", "density", "mass", "finish", "surface_roughness")
+         "te_bevel", "material", "density", "mass", "finish", "surface_roughness", "roll_deg",
+         "lift_curve", "airfoil_polar")
 COMPONENT_KEYS = {
     "nose_cone": _BODY + ("shape", "radius", "shape_parameter", "ogive_radius"),
     "body_tube": _BODY + ("radius",),
@@ -44,7 +47,7 @@ COMPONENT_KEYS = {
                                  "sweep_angle_deg"),
     "elliptical_fins": _FINS + ("root_chord", "span"),
     "freeform_fins": _FINS + ("points",),
-    "rail_buttons": ("type", "name", "x_fore", "x_aft", "height", "mass_each"),
+    "rail_buttons": ("type", "name", "x_fore", "x_aft", "height", "mass_each", "angle_deg"),
     "launch_lug": ("type", "name", "x", "length", "outer_radius", "inner_radius",
                    "material", "density"),
     "point_mass": ("type", "name", "x", "mass", "I_transverse", "I_axial"),
@@ -89,6 +92,8 @@ class RocketFile:
     source: Path
     wet_mass_override: MassProperties | None = None
     airbrakes: object = None          # AirbrakeSpec or None (rocket/airbrake_spec.py)
+    #: lower stages below this rocket (``[[stage]]``; :class:`ironbark_opt.staged_vehicle.StageSpec`)
+    stages: tuple = ()
 
     def dry_rocket(self, motor=None) -> Rocket:
         """The rocket with dry mass properties (numeric-only).
@@ -186,6 +191,24 @@ class _Reader:
                              field=f"{label or table}.{key}")
         return float(val)
 
+    def tables(self, items, table, keys):
+        """``(index, table dict, label)`` of each ``[[table]]``, keys checked."""
+        if not isinstance(items, list):
+            raise self.error(f"expected [[{table}]] tables", table)
+        for i, d in enumerate(items):
+            label = f"{table}[{i}]"
+            self.check_keys(d, keys, table, i, label)
+            yield i, d, label
+
+    def table_file(self, d, table, i, label, what, key="file"):
+        """The existing file named by ``key`` of the ``i``-th ``[[table]]`` (required)."""
+        if not isinstance(d.get(key), str):
+            raise self.error(f"missing required key '{key}' ({what})", table, None, i, field=f"{label}.{key}")
+        path = (self.path.parent / d[key]).resolve()
+        if not path.is_file():
+            raise self.error(f"file not found: {path}", table, key, i, field=f"{label}.{key}")
+        return path
+
     def file(self, data, key, table, required=False):
         if key not in data:
             if required:
@@ -273,7 +296,28 @@ def loads_rocket_toml(text: str, path) -> RocketFile:
                       launch=_read_launch(rd, data.get("launch", {})),
                       recovery=_read_recovery(rd, data.get("recovery", [])),
                       ballast=ballast, source=path, wet_mass_override=wet,
-                      airbrakes=_read_airbrakes(rd, data))
+                      airbrakes=_read_airbrakes(rd, data), stages=_read_stages(rd, data.get("stage", [])))
+
+
+def _read_stages(rd: _Reader, items) -> tuple:
+    """``[[stage]]`` tables -> StageSpecs (a lower stage in its own rocket file)."""
+    from ironbark_opt.staged_vehicle import StageSpec
+
+    out = []
+    for i, d, label in rd.tables(items, "stage", STAGE_KEYS):
+        file = rd.table_file(d, "stage", i, label, "the stage's own rocket file")
+        if file.resolve() == rd.path.resolve():
+            raise rd.error("a stage cannot be the file itself", "stage", "file", i, field=f"{label}.file")
+        delay = rd.number(d, "separation_delay", "stage", i, label, default=0.0)
+        if delay < 0:
+            raise rd.error(f"must be >= 0 s after the stage's burnout, got {delay}", "stage",
+                           "separation_delay", i, field=f"{label}.separation_delay")
+        name = d.get("name", "")
+        if not isinstance(name, str):
+            raise rd.error(f"expected a string, got {name!r}", "stage", "name", i, field=f"{label}.name")
+        aero = {k: rd.file(d, k, "stage") for k in ("table", "drag_power_off", "drag_power_on") if k in d}
+        out.append(StageSpec(file=file, separation_delay=delay, name=name, aero=aero or None))
+    return tuple(out)
 
 
 def _read_airbrakes(rd: _Reader, data):
@@ -364,7 +408,8 @@ def _read_component(rd: _Reader, d, i, prev):
     kw = {}
     for key, val in d.items():
         if key in ("type", "material", "cant_deg", "sweep_angle_deg", "section", "le_bevel",
-                   "te_bevel", "finish", "surface_roughness"):
+                   "te_bevel", "finish", "surface_roughness", "roll_deg", "lift_curve",
+                   "airfoil_polar", "angle_deg"):
             continue
         if key in ("name", "shape"):
             if not isinstance(val, str):
@@ -398,8 +443,13 @@ def _read_component(rd: _Reader, d, i, prev):
         kw["radius"] = prev.aft_radius
     if kind == "transition" and "fore_radius" not in d and prev is not None:
         kw["fore_radius"] = prev.aft_radius
+    if kind == "rail_buttons" and "angle_deg" in d:
+        kw["angle"] = math.radians(rd.number(d, "angle_deg", "component", i, label))
     if kind.endswith("_fins"):
         kw["cant"] = math.radians(rd.number(d, "cant_deg", "component", i, label, default=0.0))
+        if "roll_deg" in d:
+            kw["roll"] = math.radians(rd.number(d, "roll_deg", "component", i, label))
+        kw["section_lift"] = _read_section_lift(rd, d, i, label)
         try:
             kw["section"] = FinSection(kind=d.get("section", "square"),
                                        le_bevel=d.get("le_bevel"), te_bevel=d.get("te_bevel"))
@@ -433,6 +483,29 @@ def _component_roughness(rd: _Reader, d, i, label) -> float:
         except InputError as exc:
             raise rd.error(exc.message, "component", "finish", i, field=f"{label}.finish") from None
     return rd.number(d, "surface_roughness", "component", i, label)
+
+
+def _read_section_lift(rd: _Reader, d, i, label):
+    """A fin set's ``lift_curve`` or ``airfoil_polar`` file -> its ``section_lift``."""
+    from ironbark_opt.rocket import fin_files
+    given = [k for k in ("lift_curve", "airfoil_polar") if k in d]
+    if not given:
+        return None
+    if len(given) > 1:
+        raise rd.error("give lift_curve or airfoil_polar, not both", "component", "airfoil_polar", i,
+                       field=f"{label}.airfoil_polar")
+    key = given[0]
+    if not isinstance(d[key], str):
+        raise rd.error(f"expected a file path string, got {d[key]!r}", "component", key, i, field=f"{label}.{key}")
+    path = (rd.path.parent / d[key]).resolve()
+    if not path.is_file():
+        raise rd.error(f"file not found: {path}", "component", key, i, field=f"{label}.{key}")
+    try:
+        if key == "lift_curve":
+            return ("curve", fin_files.read_lift_curve(path, f"{label}.{key}"))
+        return ("polar", fin_files.read_airfoil_polar(path, f"{label}.{key}"))
+    except InputError as exc:
+        raise rd.error(f"{path.name}: {exc.message}", "component", key, i, field=f"{label}.{key}") from None
 
 
 def _read_motor(rd: _Reader, d):

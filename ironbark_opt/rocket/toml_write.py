@@ -69,7 +69,11 @@ def _component(comp) -> dict:
         if key == "points":
             val = [list(map(float, p)) for p in val]
         out[key] = val
+    if kind == "rail_buttons" and comp.angle is not None:
+        out["angle_deg"] = math.degrees(comp.angle)
     if kind.endswith("_fins"):
+        if comp.roll is not None:
+            out["roll_deg"] = math.degrees(comp.roll)
         out["cant_deg"] = math.degrees(comp.cant)
         out["section"] = comp.section.kind
         out["le_bevel"] = comp.section.le_bevel

@@ -111,3 +111,18 @@ def test_streamlined_fins_rise_by_lock_above_the_korn_critical_mach():
     frontal = 4 * 0.012 * 0.11 / sref * np.cos(np.arctan2(0.06, 0.11)) ** 2
     at1 = float(streamlined_fin_ca(fins, np.array([1.0 - 1e-9]), sref)[0])
     assert at1 == pytest.approx(float(rounded_le(1.0)) * frontal, rel=1e-6)
+
+
+def test_flat_front_carries_the_stagnation_pressure():
+    """A body that starts with a tube (a booster after separation): the flat front adds
+    0.85 q_stag/q on its full area (Niskanen 2013 eq. 3.87, Hoerner ch. 3), i.e. 0.85 at
+    M = 0 and 0.85 x 1.0641 at M = 0.5 on a face of the reference area; a nose adds none."""
+    tube = Rocket("booster", [BodyTube(length=1.0, radius=0.05)])
+    with_nose = _rocket("tangent_ogive")
+    for m, expected in ((0.0, 0.85), (0.5, 0.85 * (1 + 0.0625 + 0.0625 / 40)), (2.0, 0.85 * float(stagnation_ratio(2.0)))):
+        assert pressure_ca(tube, np.array([m]))[0] == pytest.approx(expected, rel=1e-12)
+    bare = Rocket("t", [BodyTube(length=1.0, radius=0.05),
+                        TrapezoidalFins(count=3, x=0.8, thickness=0.004, root_chord=0.2, tip_chord=0.1, span=0.1,
+                                        sweep_length=0.0, section=FinSection(kind="square"))])
+    fins_only = pressure_ca(with_nose, np.array([0.3]))[0]          # tangent ogive: no nose drag
+    assert pressure_ca(bare, np.array([0.3]))[0] - fins_only == pytest.approx(0.85 * float(stagnation_ratio(0.3)))

@@ -15,11 +15,7 @@ from ironbark_opt.vehicle import load_setup
 ORK = Path(__file__).parents[1] / "data" / "ork" / "Two stage high power rocket.ork"
 
 
-@pytest.fixture(autouse=True)
-def _motors(monkeypatch, tmp_path):
-    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
-    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
-    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(ORK.parent / "motors"))
+pytestmark = pytest.mark.usefixtures("ork_offline")     # tests/conftest.py
 
 
 def _edges(t, thrust):
@@ -56,14 +52,14 @@ def test_each_stored_simulation(index):
     print(f"  mass {df.loc[df['phase'] == 'boost', 'mass_kg'].iloc[-1]:.3f} kg -> {jump:.3f} kg at separation")
     assert jump < df.loc[df["phase"] == "boost", "mass_kg"].iloc[-1] - 0.5
     # The booster after separation: its own apogee and landing point against OpenRocket's
-    # booster branch.  Loose (40 %): the empirical drag estimate has no blunt-forebody
-    # drag for the booster's flat front (measured +21 % / +35 % on its apogee).
+    # booster branch (10 %).  Its flat front carries the stagnation pressure (Niskanen 2013
+    # eq. 3.87, Hoerner ch. 3): without it the apogees were +21 % / +35 %, now -4.4 % / -1.7 %.
     s, b = flight.summary_values, sim.branches["Booster"]
     print(f"  booster apogee {s['booster_apogee_agl_m']:.1f} m (OpenRocket {b['altitude_m'].max():.1f} m), lands at "
           f"{s['booster_landing_time_s']:.1f} s (OpenRocket {b['time_s'].iloc[-1]:.1f} s), "
           f"{s['booster_landing_east_m']:.1f} m east (OpenRocket {b['east_m'].iloc[-1]:.1f} m)")
-    assert s["booster_apogee_agl_m"] == pytest.approx(b["altitude_m"].max(), rel=0.40)
-    assert s["booster_landing_time_s"] == pytest.approx(b["time_s"].iloc[-1], rel=0.40)
+    assert s["booster_apogee_agl_m"] == pytest.approx(b["altitude_m"].max(), rel=0.10)
+    assert s["booster_landing_time_s"] == pytest.approx(b["time_s"].iloc[-1], rel=0.10)
     assert s["booster_landing_east_m"] * b["east_m"].iloc[-1] > 0          # same side of the pad
     # The sustainer down under its drogue and main: landing time against OpenRocket's
     # sustainer branch (10 %), on the same side of the pad.

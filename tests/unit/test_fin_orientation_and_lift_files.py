@@ -1,0 +1,176 @@
+"""Fin-set roll angle (TOML roll_deg, the .ork fin rotation) in the panel mesh, and
+fin lift-curve / airfoil-polar files in the Barrowman fin slope, each against an
+analytic or independent number."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ironbark_opt.aero import barrowman
+from ironbark_opt.errors import InputError
+from ironbark_opt.rocket import BodyTube, NoseCone, Rocket, TrapezoidalFins
+from ironbark_opt.rocket.fin_files import read_airfoil_polar, read_lift_curve, section_slope
+
+DATA = Path(__file__).parents[1] / "data"
+
+
+def _rocket(**fin_kw):
+    return Rocket("t", [NoseCone(shape="conical", length=0.3, radius=0.05), BodyTube(x=0.3, length=1.0, radius=0.05),
+                        TrapezoidalFins(x=1.1, thickness=0.004, root_chord=0.2, tip_chord=0.1, span=0.1,
+                                        sweep_length=0.05, **fin_kw)])
+
+
+def _fin_tip_angles(rocket):
+    """Angles [deg] of the meshed fins' tips, from +y toward +z (FinSet.roll convention)."""
+    from panair.geometry_adapter import from_rocket
+    from panair.mesh import mesh_rocket
+    out = []
+    for net in mesh_rocket(from_rocket(rocket)):
+        if net.name.startswith("fin") and net.name[3:].isdigit():
+            p = net.points.reshape(-1, 3)
+            tip = p[np.argmax(np.hypot(p[:, 1], p[:, 2]))]
+            out.append(math.degrees(math.atan2(tip[2], tip[1])) % 360.0)
+    return sorted(round(a, 3) for a in out)
+
+
+@pytest.mark.parametrize("count, roll_deg, expected", [
+    (4, None, [45.0, 135.0, 225.0, 315.0]),       # default: no fin in the pitch plane
+    (4, 0.0, [0.0, 90.0, 180.0, 270.0]),          # '+' layout: two fins in the x-z plane
+    (2, None, [0.0, 180.0]),                      # default: across the pitch plane
+    (2, 90.0, [90.0, 270.0]),                     # in the pitch plane
+    (3, 30.0, [30.0, 150.0, 270.0]),
+])
+def test_roll_angle_places_the_meshed_fins(count, roll_deg, expected):
+    roll = None if roll_deg is None else math.radians(roll_deg)
+    got = _fin_tip_angles(_rocket(count=count, roll=roll))
+    print(count, roll_deg, got)
+    assert got == pytest.approx(expected, abs=0.01)
+
+
+def test_toml_roll_and_ork_rotation_are_read(tmp_path):
+    from ironbark_opt.openrocket import read_ork
+    from ironbark_opt.openrocket.build import geometry
+    from ironbark_opt.openrocket.parallel import booster_rocket
+    doc = read_ork(DATA / "ork" / "Parallel booster staging.ork")
+    core = geometry(doc).fin_sets()[0]
+    pod = booster_rocket(doc, doc.rocket.pods[0]).fin_sets()
+    print(math.degrees(core.roll), [math.degrees(f.roll) for f in pod])
+    assert math.degrees(core.roll) == pytest.approx(45.0)
+    assert sorted(math.degrees(f.roll) for f in pod) == pytest.approx([-45.0, 45.0])
+    from ironbark_opt.rocket.toml_io import loads_rocket_toml
+    calisto = Path(__file__).parents[2] / "examples" / "calisto" / "calisto.toml"
+    text = calisto.read_text().replace('type = "trapezoidal_fins"', 'type = "trapezoidal_fins"\nroll_deg = 10', 1)
+    fins = loads_rocket_toml(text, calisto).rocket.fin_sets()[0]
+    assert fins.roll == pytest.approx(math.radians(10.0))
+
+
+def _diederich_rocketpy(a0, planform, mach, aref):
+    """RocketPy's airfoil-fin slope, written from its formulation (independent of
+    barrowman.single_fin_cn_alpha): clalpha2D = a0/beta, AR = 2 s^2/A_f,
+    FD = 2 pi AR/(clalpha2D cos Gc), CNa1 = clalpha2D FD (A_f/A_ref) cos Gc / (2 + FD sqrt(1 + (2/FD)^2))."""
+    beta = math.sqrt(1 - mach ** 2)
+    cl2d = a0 / beta
+    ar = 2 * planform.span ** 2 / planform.area
+    fd = 2 * math.pi * ar / (cl2d * planform.cos_midchord_sweep)
+    return cl2d * fd * (planform.area / aref) * planform.cos_midchord_sweep / (2 + fd * math.sqrt(1 + (2 / fd) ** 2))
+
+
+def test_airfoil_polar_slope_replaces_two_pi_as_rocketpy(tmp_path):
+    # a polar with CL = 0.9 * 2 pi * alpha in its linear range, stalling beyond 10 deg
+    alpha = np.arange(-20.0, 20.5, 1.0)
+    cl = 0.9 * 2 * np.pi * np.radians(np.clip(alpha, -10, 10))
+    f = tmp_path / "polar.csv"
+    f.write_text("alpha_deg,cl\n" + "\n".join(f"{a},{c}" for a, c in zip(alpha, cl)))
+    a0 = read_airfoil_polar(f)
+    assert a0 == pytest.approx(0.9 * 2 * np.pi, rel=1e-12)
+    plan = barrowman.trapezoid_planform(0.2, 0.1, 0.1, 0.05)
+    aref = math.pi * 0.05 ** 2
+    c = section_slope(("polar", a0))
+    for mach in (0.0, 0.3, 0.6):
+        ours = barrowman.single_fin_cn_alpha(plan, mach, aref, c)
+        ref = _diederich_rocketpy(a0, plan, mach, aref)
+        thin = barrowman.single_fin_cn_alpha(plan, mach, aref)
+        print(f"M {mach}: polar {ours:.5f}, RocketPy's formula {ref:.5f}, thin airfoil {thin:.5f}")
+        assert ours == pytest.approx(ref, rel=1e-9)
+        assert ours < thin                                        # a flatter section lifts less
+        assert barrowman.single_fin_cn_alpha(plan, mach, aref, section_slope(("polar", 2 * np.pi))) == \
+            pytest.approx(thin, rel=1e-9)                         # 2 pi: eq. 3.40 itself
+
+
+def test_lift_curve_file_and_its_use_in_the_model(tmp_path):
+    mach = np.linspace(0.0, 0.8, 9)
+    f = tmp_path / "lift.csv"
+    f.write_text("mach,cl_alpha\n" + "\n".join(f"{m},{2 * np.pi / np.sqrt(1 - m * m)}" for m in mach))
+    curve = read_lift_curve(f)
+    plan = barrowman.trapezoid_planform(0.2, 0.1, 0.1, 0.05)
+    aref = math.pi * 0.05 ** 2
+    for m in (0.1, 0.45, 0.7):             # the thin airfoil's own 2 pi / beta: eq. 3.40 (interpolation error)
+        assert barrowman.single_fin_cn_alpha(plan, m, aref, section_slope(("curve", curve))) == pytest.approx(
+            barrowman.single_fin_cn_alpha(plan, m, aref), rel=2e-3)
+    # in a flight model: a section of 80 % slope lowers CN-alpha (fins) and moves the CP forward
+    from ironbark_opt.aero.model import lift_geometry
+    base = _rocket(count=4)
+    half = _rocket(count=4, section_lift=("curve", (tuple(mach), tuple(0.8 * 2 * np.pi / np.sqrt(1 - mach ** 2)))))
+    lg0, lg1 = lift_geometry(base), lift_geometry(half)
+    c0 = sum(c.cn_alpha for c in lg0.components(0.3, base.reference_area()))
+    c1 = sum(c.cn_alpha for c in lg1.components(0.3, base.reference_area()))
+    f0 = lg0.components(0.3, base.reference_area())[-1].cn_alpha
+    f1 = lg1.components(0.3, base.reference_area())[-1].cn_alpha
+    k = plan.span ** 2 / (plan.area * plan.cos_midchord_sweep)
+    beta = math.sqrt(1 - 0.09)
+    expected = (1 + math.sqrt(1 + (beta * k) ** 2)) / (1 + math.sqrt(1 + (beta * k / 0.8) ** 2))
+    print(f"fins CN-alpha {f0:.4f} -> {f1:.4f} (ratio {f1 / f0:.5f}, analytic {expected:.5f}); total {c0:.3f} -> {c1:.3f}")
+    assert f1 / f0 == pytest.approx(expected, rel=2e-3)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("mach,cl\n0,1\n1,2\n", "expected columns mach and cl_alpha"),
+    ("mach,cl_alpha\n0.5,6\n0.2,6\n", "increase strictly"),
+    ("mach,cl_alpha\n0,6\n0.5,-1\n", "must be > 0"),
+    ("mach,cl_alpha\n0,6\n0.5,x\n", "row 3"),
+])
+def test_bad_lift_curve_files(tmp_path, text, message):
+    f = tmp_path / "bad.csv"
+    f.write_text(text)
+    with pytest.raises(InputError, match=message):
+        read_lift_curve(f)
+
+
+def test_toml_lift_curve_key(tmp_path):
+    from ironbark_opt.rocket.toml_io import loads_rocket_toml
+    calisto = Path(__file__).parents[2] / "examples" / "calisto" / "calisto.toml"
+    lift = tmp_path / "lift.csv"
+    lift.write_text("mach,cl_alpha_per_deg\n0,0.1\n0.8,0.12\n")
+    text = calisto.read_text().replace('type = "trapezoidal_fins"',
+                                       f'type = "trapezoidal_fins"\nlift_curve = "{lift.as_posix()}"', 1)
+    fins = loads_rocket_toml(text, calisto).rocket.fin_sets()[0]
+    assert fins.section_lift[0] == "curve" and fins.section_lift[1][1][0] == pytest.approx(math.degrees(0.1))
+    both = text.replace("lift_curve", f'airfoil_polar = "{lift.as_posix()}"\nlift_curve', 1)
+    with pytest.raises(InputError, match="not both"):
+        loads_rocket_toml(both, calisto)
+
+
+def test_rail_button_angle_adds_its_off_axis_inertia():
+    """Two 10 g buttons 0.5 m apart, standoff 10 mm on a 50 mm body, at 30 deg from +y:
+    r = 0.055 m, (y, z) = r (cos 30, sin 30); about the axis point between them
+    I_xx = 2 m r^2, I_yy = 2 m (0.25^2 + z^2), I_zz = 2 m (0.25^2 + y^2), I_yz = -2 m y z."""
+    from ironbark_opt.rocket import RailButtons
+    m, r, a = 0.01, 0.055, math.radians(30.0)
+    y, z = r * math.cos(a), r * math.sin(a)
+    rocket = Rocket("t", [NoseCone(shape="conical", length=0.3, radius=0.05), BodyTube(x=0.3, length=1.0, radius=0.05),
+                          RailButtons(x_fore=0.5, x_aft=1.0, height=0.01, mass_each=m, angle=a)])
+    (name, mp), = [(n, p) for n, p in rocket.component_mass_properties() if n == "rail buttons"]
+    expected = np.array([[2 * m * r * r, 0, 0], [0, 2 * m * (0.0625 + z * z), -2 * m * y * z],
+                         [0, -2 * m * y * z, 2 * m * (0.0625 + y * y)]])
+    print(mp.inertia, expected)
+    assert mp.mass == pytest.approx(0.02) and mp.cg_x == pytest.approx(0.75)
+    np.testing.assert_allclose(mp.inertia, expected, rtol=1e-12, atol=1e-15)
+    on_axis = RailButtons(x_fore=0.5, x_aft=1.0, height=0.01, mass_each=m).mass_properties()
+    assert on_axis.inertia[0, 0] == 0.0 and on_axis.inertia[1, 1] == pytest.approx(2 * m * 0.0625)
+    from ironbark_opt.rocket.toml_io import loads_rocket_toml
+    calisto = Path(__file__).parents[2] / "examples" / "calisto" / "calisto.toml"
+    text = calisto.read_text().replace('type = "rail_buttons"', 'type = "rail_buttons"\nangle_deg = 30', 1)
+    assert 'angle_deg = 30' in text
+    buttons = [c for c in loads_rocket_toml(text, calisto).rocket.components if isinstance(c, RailButtons)]
+    assert buttons[0].angle == pytest.approx(a)
