@@ -33,6 +33,9 @@ def load_motor_for(spec):
             [(load_motor_for(s), float(t), s.nozzle_x) for s, t in spec.airstart]
         return CompositeMotor(tuple(m for m, _, _ in parts), tuple(t for _, t, _ in parts),
                               tuple(x for _, _, x in parts), spec.nozzle_x)
+    if spec.kind != "solid":
+        from ironbark_opt.rocket.tank_spec import tank_motor
+        return tank_motor(spec)
     from ironbark_opt.motors import load_motor
     from ironbark_opt.motors.grains import Grains
 
@@ -133,7 +136,9 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
     rocket = rf.dry_rocket(motor)
     from ironbark_opt.motors import load_motor
     from ironbark_opt.plausibility import check_rocket_file
-    check_rocket_file(rf, rocket, motor, load_motor(rf.motor.file, rf.motor.designation))
+    file_motor = (motor.curve if rf.motor.kind != "solid"
+                  else load_motor(rf.motor.file, rf.motor.designation))
+    check_rocket_file(rf, rocket, motor, file_motor)
     table = load_aero_table(rf.aero, rocket)
     jet, jet_source = jet_area_of(motor)
     aero = build_aero_model(rocket, table=table, surface_roughness=rf.aero.surface_roughness,

@@ -41,6 +41,17 @@ class MotorSpec:
         Further motors of the same stage and their ignition times [s after
         launch] (air-start); flown with this one as a
         :class:`~ironbark_opt.motors.composite.CompositeMotor`.
+    kind : {'solid', 'hybrid', 'liquid'}
+        Hybrid and liquid motors take their propellant from ``tanks`` (and
+        ``grain``), see :mod:`ironbark_opt.rocket.tank_spec`.
+    ignition_time : float [s]
+        Thrust-curve delay after the valves open (hybrid/liquid).
+    tanks : tuple of Tank
+    grain : dict or None
+        Hybrid fuel grain: ``Grains`` keywords + ``position`` [m fwd of nozzle exit].
+    ejection_delay : float or None [s]
+        Ejection charge after burnout; recovery with ``deploy = "ejection"``
+        opens then (None: the file's or ``.ork`` configuration's delay).
     """
 
     file: Path
@@ -48,6 +59,11 @@ class MotorSpec:
     nozzle_x: float = 0.0
     overrides: dict = field(default_factory=dict)
     airstart: tuple = ()
+    kind: str = "solid"
+    ignition_time: float = 0.0
+    tanks: tuple = ()
+    grain: dict | None = None
+    ejection_delay: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "file", Path(self.file))
