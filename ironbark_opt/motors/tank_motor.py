@@ -231,7 +231,8 @@ class TankMotor(Motor):
             out["grain"] = mf
             total_m, total_mx = total_m + mf, total_mx + mf * self.grain_position
         out["propellant_mass_kg"] = total_m
-        out["propellant_cg_m"] = total_mx / np.where(total_m > 0, total_m, 1.0)
+        with np.errstate(invalid="ignore", divide="ignore"):     # no propellant: no CG (NaN)
+            out["propellant_cg_m"] = np.where(total_m > 1e-9, total_mx / total_m, np.nan)
         return out
 
     def to_dict(self) -> dict:
