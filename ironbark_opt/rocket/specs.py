@@ -190,8 +190,9 @@ class RecoverySpec:
     name : str
     cd_area : float [m^2]
         Drag coefficient times reference area, Cd S.
-    deploy : "apogee" or float [m]
-        Deploy at apogee or at this altitude above ground on the way down.
+    deploy : "apogee", "ejection" or float [m]
+        Deploy at apogee, at the motor's ejection charge (burnout + the
+        motor's ejection delay), or at this altitude above ground on the way down.
     lag : float [s]
         Delay from the trigger to full inflation (default 0).
     """
@@ -204,8 +205,8 @@ class RecoverySpec:
     def __post_init__(self):
         object.__setattr__(self, "cd_area", v.positive(self.cd_area, "cd_area", "m^2"))
         if isinstance(self.deploy, str):
-            if self.deploy != "apogee":
-                raise InputError(f"deploy must be 'apogee' or an altitude above ground [m], "
+            if self.deploy not in ("apogee", "ejection"):
+                raise InputError(f"deploy must be 'apogee', 'ejection' or an altitude above ground [m], "
                                  f"got {self.deploy!r}", field="deploy")
         else:
             object.__setattr__(self, "deploy", v.positive(self.deploy, "deploy"))
