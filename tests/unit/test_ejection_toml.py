@@ -92,3 +92,19 @@ def test_bad_keys(extra, recovery, field, message):
     e = err.value
     print(e)
     assert e.field == field and message in e.message and e.line is not None
+
+
+def test_ork_delay_survives_conversion_to_toml(tmp_path, monkeypatch):
+    """.ork configuration [C6-3] -> TOML: the 3 s delay and the ejection deployment are kept."""
+    from ironbark_opt.openrocket import load_ork
+    from ironbark_opt.rocket import dump_rocket_toml
+    from ironbark_opt.rocket.toml_io import load_rocket_toml
+
+    data = ROOT / "tests" / "data" / "ork"
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(data / "motors"))
+    rf = load_ork(data / "A simple model rocket.ork", config="[C6-3]")
+    assert rf.motor.ejection_delay == 3.0 and [r.deploy for r in rf.recovery] == ["ejection"]
+    back = load_rocket_toml(dump_rocket_toml(rf, tmp_path / "simple.toml"))
+    assert back.motor.ejection_delay == 3.0 and [r.deploy for r in back.recovery] == ["ejection"]
