@@ -21,6 +21,13 @@ GRAIN_KEYS = ("count", "density", "outer_radius", "inner_radius", "height", "sep
 #: Overrides a liquid or hybrid motor takes (its propellant comes from tanks and grain).
 TANK_MOTOR_OVERRIDES = ("dry_mass", "dry_cg", "dry_inertia", "nozzle_exit_area")
 
+#: Keys each schedule uses besides the geometry and fluids.
+SCHEDULE_KEYS = {"mass_flow": ("liquid_mass", "gas_mass", "liquid_mass_flow", "gas_mass_flow",
+                               "flow_start", "flow_end", "file"),
+                 "mass": ("file",), "ullage": ("file",), "level": ("file",),
+                 "thrust": ("liquid_mass", "gas_mass")}
+_COMMON = ("name", "position", "radius", "length", "liquid_density", "gas_density", "schedule")
+
 #: Columns of a schedule file, by schedule: (required, optional).
 FILE_COLUMNS = {"mass_flow": (("time_s", "liquid_kg_s"), ("gas_kg_s",)),
                 "mass": (("time_s", "liquid_kg"), ("gas_kg",)),
@@ -106,6 +113,14 @@ def read_tanks(rd, items):
             raise rd.error(f"expected one of {', '.join(SCHEDULES)}, got {schedule!r}", table,
                            "schedule", i, field=f"{label}.schedule")
         kw["schedule"] = schedule
+        for key in d:
+            if key not in _COMMON and key not in SCHEDULE_KEYS[schedule]:
+                raise rd.error(f"'{key}' is not used by schedule = '{schedule}' (it uses "
+                               f"{', '.join(SCHEDULE_KEYS[schedule])})", table, key, i,
+                               field=f"{label}.{key}")
+        if "file" in d and ("liquid_mass_flow" in d or "gas_mass_flow" in d):
+            raise rd.error("give the outflow as a file or as constant rates, not both", table,
+                           "file", i, field=f"{label}.file")
         for key in ("liquid_mass", "gas_mass", "flow_start", "flow_end"):
             val = rd.number(d, key, table, i, label)
             if val is not None and val < 0:

@@ -178,6 +178,8 @@ def test_liquid_motor_flies(folder):
     ('file = "ox_flow.csv"', 'file = "missing.csv"', "motor.tank[0].file", "file not found"),
     ('dry_cg = 0.8\n', '', "motor.overrides.dry_cg", "needs [motor.overrides] dry_cg"),
     ('ignition_time = 0.5', 'ignition_time = -1.0', "motor.ignition_time", "must be >= 0"),
+    ('schedule = "thrust"', 'schedule = "thrust"\nflow_end = 3.0', "motor.tank[1].flow_end",
+     "not used by schedule"),
 ])
 def test_bad_tank_keys_name_file_line_field(folder, old, new, field, message):
     block = MOTOR.replace(old, new, 1)
