@@ -112,6 +112,11 @@ class Flight:
         if "airbrake_max_deployment" in s:
             lines.append(f"  air brakes         {s['airbrake_max_deployment']:10.3f} max deployment, opening from "
                          f"{s['airbrake_open_time_s']:.2f} s at up to {s['airbrake_max_rate_per_s']:.2f} /s")
+        if "ejection_time_s" in s:
+            when = (f"{s['ejection_before_apogee_s']:.2f} s BEFORE apogee (coasting apogee "
+                    f"{s['coasting_apogee_agl_m']:.1f} m)" if "ejection_before_apogee_s" in s
+                    else f"{s['ejection_after_apogee_s']:.2f} s after apogee")
+            lines.append(f"  ejection charge    {s['ejection_time_s']:10.2f} s (delay {s['ejection_delay_s']:g} s), {when}")
         if "landing_time_s" in s:
             lines.append(f"  landing            {s['landing_time_s']:10.1f} s, {s['landing_east_m']:.1f} m east, "
                          f"{s['landing_north_m']:.1f} m north ({s['landing_distance_m']:.1f} m from the rail)")
@@ -198,6 +203,11 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
             warnings.warn(f"{model.setup.name}: the air brakes opened at up to {s['airbrake_max_rate_per_s']:.2f} /s, "
                           f"faster than their rate limit {brakes.rate:g} /s: increase [airbrakes] ramp",
                           UserWarning, stacklevel=3)
+    from ironbark_opt.dynamics.ejection import describe
+    ej, message = describe(run, model.setup)
+    s.update(ej)
+    if message:
+        warnings.warn(message, UserWarning, stacklevel=3)
     if "t_landing" in run:
         xl = run["x_landing"]
         s.update(landing_time_s=float(run["t_landing"]), landing_east_m=float(xl[0]),

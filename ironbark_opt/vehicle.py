@@ -33,6 +33,9 @@ def load_motor_for(spec):
             [(load_motor_for(s), float(t), s.nozzle_x) for s, t in spec.airstart]
         return CompositeMotor(tuple(m for m, _, _ in parts), tuple(t for _, t, _ in parts),
                               tuple(x for _, _, x in parts), spec.nozzle_x)
+    if spec.kind != "solid":
+        from ironbark_opt.rocket.tank_spec import tank_motor
+        return tank_motor(spec)
     from ironbark_opt.motors import load_motor
     from ironbark_opt.motors.grains import Grains
 
@@ -136,7 +139,9 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
     rocket = rf.dry_rocket(motor)
     from ironbark_opt.motors import load_motor
     from ironbark_opt.plausibility import check_rocket_file
-    check_rocket_file(rf, rocket, motor, load_motor(rf.motor.file, rf.motor.designation))
+    file_motor = (motor.curve if rf.motor.kind != "solid"
+                  else load_motor(rf.motor.file, rf.motor.designation))
+    check_rocket_file(rf, rocket, motor, file_motor)
     table = load_aero_table(rf.aero, rocket)
     jet, jet_source = jet_area_of(motor)
     aero = build_aero_model(rocket, table=table, surface_roughness=rf.aero.surface_roughness,
@@ -167,8 +172,7 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
         from ironbark_opt.rocket.airbrake_spec import airbrake_schedule
         brakes = airbrake_schedule(rf.airbrakes)
         nominal.update(brakes.nominal())
-    chutes = tuple(Parachute(r.name, r.cd_area, None if r.deploy == "apogee" else float(r.deploy), r.lag)
-                   for r in rf.recovery)
+    chutes, delay = recovery_of(rf, motor)
     return FlightSetup(motor=motor, nozzle_x=rf.motor.nozzle_x, dry=DryMass.from_properties(rocket.dry_mass_properties()),
                        aero=aero, atmosphere=atmosphere, site_elevation=launch.site_elevation,
                        latitude=launch.latitude, longitude=launch.longitude,
@@ -177,7 +181,37 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
                        ballast_mass_max=ballast.mass_max,
                        ballast_x_range=None if ballast.x_min is None else (ballast.x_min, ballast.x_max),
                        source=str(rf.source), airbrakes=brakes, body_length=float(rocket.length()),
-                       gravity=_gravity_model(launch.gravity))
+                       gravity=_gravity_model(launch.gravity), ejection_delay=delay)
+
+
+def recovery_of(rf, motor) -> tuple:
+    """(Parachutes, ejection delay [s after burnout] or None) of a rocket file.
+
+    ``deploy = "ejection"`` opens at the motor's ejection charge: the delay is
+    ``[motor] ejection_delay`` (an ``.ork`` configuration's delay), else the
+    motor file's delay when it offers exactly one.  A plugged motor (an
+    ``.ork`` delay ``P``) has no charge: those chutes open at apogee, with a
+    warning."""
+    import warnings
+    at_ejection = [r.name for r in rf.recovery if r.deploy == "ejection"]
+    delay = rf.motor.ejection_delay
+    if at_ejection and delay is None:
+        offered = [d for d in getattr(motor, "delays", ()) if math.isfinite(d)]
+        if len(offered) != 1:
+            what = (f"offers the delays {', '.join(f'{d:g}' for d in offered)} s" if offered
+                    else "gives no ejection delay")
+            raise InputError(f"recovery '{at_ejection[0]}' deploys at ejection but the motor {what}: "
+                             f"set [motor] ejection_delay [s after burnout]", source=rf.source,
+                             field="motor.ejection_delay")
+        delay = offered[0]
+    if at_ejection and math.isinf(delay):
+        warnings.warn(f"{', '.join(at_ejection)}: the motor is plugged (no ejection charge); "
+                      f"deployed at apogee instead", UserWarning, stacklevel=3)
+        at_ejection, delay = [], None
+    chutes = tuple(Parachute(r.name, r.cd_area, float(r.deploy) if not isinstance(r.deploy, str) else None,
+                             r.lag, at_ejection=r.deploy == "ejection" and delay is not None)
+                   for r in rf.recovery)
+    return chutes, (delay if at_ejection else None)
 
 
 def _gravity_model(value):

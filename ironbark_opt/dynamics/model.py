@@ -27,7 +27,7 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics import rhs as rhs_mod
 from ironbark_opt.dynamics.frames import launch_quaternion, rail_direction_l, rotation_matrix
-from ironbark_opt.dynamics import model_cache
+from ironbark_opt.dynamics import ejection, model_cache
 from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, jit_mode, phase_trajectory, rk4_step
 from ironbark_opt.errors import InputError, SolverError
 
@@ -450,12 +450,27 @@ class FlightModel:
         h, x_a = float(h), np.array(x_a).ravel()
         t_a = t_k + h
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
-        t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], self.boost_times(t_r, t_b, p),
-                            t_b + span * fr[1:k + 1], [t_a]])
-        x = np.hstack([x0[:, None], X_rail, X_boost, X_coast[:, :k], x_a[:, None]])
-        phase = np.array(["rail"] * (n_r + 1) + ["boost"] * n_b + ["coast"] * (k + 1))
+        t_e = ejection.ejection_time(self.setup, p)
+        head_t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], self.boost_times(t_r, t_b, p)])
+        head_x = np.hstack([x0[:, None], X_rail, X_boost])
+        head_phase = ["rail"] * (n_r + 1) + ["boost"] * n_b
+        extra = {}
+        if t_e is not None and t_e < t_a:       # the chute opens on the way up
+            t_s, X_s, ph_s, t_a2, x_a2 = ejection.fly_early(self, x_b, t_b, t_e, p, t_a)
+            extra = dict(t_ejection=t_e, x_ejection=X_s[:, ph_s.index("ejected") - 1],
+                         ejection_before_apogee_s=t_a - t_e, coasting_apogee_agl_m=float(x_a[2]))
+            t_a, x_a = t_a2, x_a2
+            t = np.concatenate([head_t, t_s])
+            x = np.hstack([head_x, X_s])
+            phase = np.array(head_phase + ph_s)
+        else:
+            t = np.concatenate([head_t, t_b + span * fr[1:k + 1], [t_a]])
+            x = np.hstack([head_x, X_coast[:, :k], x_a[:, None]])
+            phase = np.array(head_phase + ["coast"] * (k + 1))
+            if t_e is not None:
+                extra = dict(t_ejection=t_e)
         out = dict(t=t, x=x, phase=phase, p=p, t_rail=t_r, t_burnout=t_b, t_apogee=t_a,
-                   x_rail=x_r, x_burnout=x_b, x_apogee=x_a)
+                   x_rail=x_r, x_burnout=x_b, x_apogee=x_a, **extra)
         if descent:
             out.update(self._descend(t_a, x_a, p, t, x, phase))
         return out
@@ -564,10 +579,19 @@ class FlightModel:
         h = dtc * vz_k / np.where(vz_k != vz_end, vz_k - vz_end, 1.0)
         h, x_a = self._mapped("apogee", n)(x_k, t_k[None, :], h[None, :], dtc[None, :], P)
         h, x_a = np.array(h).ravel(), np.array(x_a)
-        out = dict(apogee_agl=x_a[2], t_apogee=t_k + h, t_rail=t_r,
+        t_apo = t_k + h
+        redo = {}
+        t_e = ejection.ejection_time(self.setup, P)
+        if t_e is not None:                   # each sample in its own ejection case
+            for j in np.nonzero((t_e < t_apo) | (descent & (t_e > t_apo)))[0]:
+                redo[j] = one = self.run(P[:, j], descent=descent)
+                x_a[:, j], t_apo[j] = one["x_apogee"], one["t_apogee"]
+        out = dict(apogee_agl=x_a[2], t_apogee=t_apo, t_rail=t_r,
                    rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
         if descent:
-            out.update(self.descend(x_a, t_k + h, P))
+            out.update(self.descend(x_a, t_apo, P))
+            for j, one in redo.items():
+                out["t_landing"][j], out["x_landing"][:, j] = one["t_landing"], one["x_landing"]
         return out
 
     @staticmethod
@@ -685,11 +709,27 @@ class FlightModel:
         return out
 
     def _descend(self, t_a, x_a, p, t, x, phase):
-        """Single run: descent samples appended to the ascent's."""
+        """Single run: descent samples appended to the ascent's (with a free fall
+        from apogee to a late ejection charge first)."""
+        late = self._late_ejection(x_a, t_a, p)
+        if late is not None:
+            t_l, X_l = late
+            t, x = np.concatenate([t, t_l]), np.hstack([x, X_l])
+            phase = np.concatenate([phase, ["coast"] * t_l.size])
+            t_a, x_a = float(t_l[-1]), X_l[:, -1]
         d = self.descend(x_a[:, None], np.array([t_a]), p[:, None], keep_samples=True)
         return dict(t=np.concatenate([t, d["t"]]), x=np.hstack([x, d["x"]]),
                     phase=np.concatenate([phase, d["phase"]]),
                     t_landing=float(d["t_landing"][0]), x_landing=d["x_landing"][:, 0])
+
+    def _late_ejection(self, x_a, t_a, p):
+        """(times, states) of the free fall from apogee to an ejection charge that
+        fires after it, when every chute opening at apogee waits for the charge."""
+        t_e = ejection.ejection_time(self.setup, p)
+        waits = all(c.at_ejection for c in self.setup.parachutes if c.deploy_altitude is None)
+        if t_e is None or t_e <= t_a or not waits:
+            return None
+        return ejection.coast_to_late_ejection(self, x_a, t_a, t_e, p)
 
     def outputs(self, t, x, phase, p) -> np.ndarray:
         """Derived quantities (rows of ``rhs.OUTPUT_NAMES``) at the samples;
@@ -738,7 +778,10 @@ def _final_state(model: FlightModel, p, T, t_rail_guess: float):
     x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
     t_b = float(model.setup.motor.burn_time) * P["burn_time_scale"]
     X_b = model.trajectory["boost"](x_r, t_r, t_b, p)
-    x_t = model.trajectory["coast"](X_b[:, -1], t_b, T, p)[:, -1]
+    if ejection.ejection_time(model.setup, P) is not None and ejection.ejects_before_apogee(model):
+        x_t = ejection.ejected_final_state(model, X_b[:, -1], t_b, p, T)
+    else:
+        x_t = model.trajectory["coast"](X_b[:, -1], t_b, T, p)[:, -1]
     return x_t, t_r, x_r, X_b
 
 

@@ -52,12 +52,16 @@ class Parachute:
         Deploy height above ground during descent; None = at apogee.
     lag : float [s]
         Delay between trigger and full inflation.
+    at_ejection : bool
+        Opens at the motor's ejection charge (``FlightSetup.ejection_delay``
+        after burnout), before or after apogee, instead of at apogee.
     """
 
     name: str
     cd_area: float
     deploy_altitude: float | None = None
     lag: float = 0.0
+    at_ejection: bool = False
 
 
 @dataclass(frozen=True)
@@ -106,6 +110,9 @@ class FlightSetup:
         in the coast.
     body_length : float or None [m]
         Nose tip to the aft end of the body (for plausibility checks).
+    ejection_delay : float or None [s]
+        The motor's ejection charge fires this long after burnout; parachutes
+        with ``at_ejection`` open then (:mod:`ironbark_opt.dynamics.ejection`).
     """
 
     motor: Any
@@ -126,6 +133,7 @@ class FlightSetup:
     source: str | None = None
     airbrakes: Any = None
     body_length: float | None = None
+    ejection_delay: float | None = None
 
     def nominal_parameters(self, **overrides) -> np.ndarray:
         """Parameter vector with the case's nominal values and ``overrides``."""

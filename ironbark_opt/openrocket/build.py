@@ -110,9 +110,10 @@ def geometry(doc: OrkDocument) -> Rocket:
 def recovery(doc: OrkDocument, config_id: str = "") -> tuple:
     """Parachutes and streamers as RecoverySpecs for one configuration.
 
-    Deployment at ``apogee`` or ``ejection`` (the motor's delay charge, taken
-    at apogee) deploys at apogee, ``altitude`` at the given height on the way
-    down (after ``deploydelay``); ``never`` and lower-stage events are skipped.
+    Deployment at ``apogee``, at ``ejection`` (the motor's delay charge:
+    burnout + the configuration's delay, :mod:`ironbark_opt.dynamics.ejection`),
+    ``altitude`` at the given height on the way down (after ``deploydelay``);
+    ``never`` and lower-stage events are skipped.
     """
     out = []
     for c in doc.rocket.core_components():
@@ -131,7 +132,7 @@ def recovery(doc: OrkDocument, config_id: str = "") -> tuple:
             config_id, (g["deploy_event"], g["deploy_altitude"], g["deploy_delay"]))
         if event not in ("apogee", "ejection", "altitude"):
             continue
-        deploy = altitude if event == "altitude" else "apogee"
+        deploy = altitude if event == "altitude" else event
         out.append(RecoverySpec(c.name, cd * area, deploy, delay))
     return tuple(out)
 
@@ -174,7 +175,10 @@ def _motor_spec(doc: OrkDocument, mount, entry) -> MotorSpec:
     path, designation = found.path, found.motor.designation
     if mount.cluster_count > 1:
         path, designation = cluster_motor_file(path, found.motor, mount.cluster_count)
-    return MotorSpec(file=path, designation=designation, nozzle_x=nozzle_x(mount, entry))
+    # the configuration's ejection delay (None in the file: plugged, no charge)
+    delay = math.inf if entry.delay is None else float(entry.delay)
+    return MotorSpec(file=path, designation=designation, nozzle_x=nozzle_x(mount, entry),
+                     ejection_delay=delay)
 
 
 def load_ork_geometry(path) -> Rocket:

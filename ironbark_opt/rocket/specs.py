@@ -41,6 +41,17 @@ class MotorSpec:
         Further motors of the same stage and their ignition times [s after
         launch] (air-start); flown with this one as a
         :class:`~ironbark_opt.motors.composite.CompositeMotor`.
+    kind : {'solid', 'hybrid', 'liquid'}
+        Hybrid and liquid motors take their propellant from ``tanks`` (and
+        ``grain``), see :mod:`ironbark_opt.rocket.tank_spec`.
+    ignition_time : float [s]
+        Thrust-curve delay after the valves open (hybrid/liquid).
+    tanks : tuple of Tank
+    grain : dict or None
+        Hybrid fuel grain: ``Grains`` keywords + ``position`` [m fwd of nozzle exit].
+    ejection_delay : float or None [s]
+        Ejection charge after burnout; recovery with ``deploy = "ejection"``
+        opens then (None: the file's or ``.ork`` configuration's delay).
     """
 
     file: Path
@@ -48,6 +59,11 @@ class MotorSpec:
     nozzle_x: float = 0.0
     overrides: dict = field(default_factory=dict)
     airstart: tuple = ()
+    kind: str = "solid"
+    ignition_time: float = 0.0
+    tanks: tuple = ()
+    grain: dict | None = None
+    ejection_delay: float | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "file", Path(self.file))
@@ -174,8 +190,9 @@ class RecoverySpec:
     name : str
     cd_area : float [m^2]
         Drag coefficient times reference area, Cd S.
-    deploy : "apogee" or float [m]
-        Deploy at apogee or at this altitude above ground on the way down.
+    deploy : "apogee", "ejection" or float [m]
+        Deploy at apogee, at the motor's ejection charge (burnout + the
+        motor's ejection delay), or at this altitude above ground on the way down.
     lag : float [s]
         Delay from the trigger to full inflation (default 0).
     """
@@ -188,8 +205,8 @@ class RecoverySpec:
     def __post_init__(self):
         object.__setattr__(self, "cd_area", v.positive(self.cd_area, "cd_area", "m^2"))
         if isinstance(self.deploy, str):
-            if self.deploy != "apogee":
-                raise InputError(f"deploy must be 'apogee' or an altitude above ground [m], "
+            if self.deploy not in ("apogee", "ejection"):
+                raise InputError(f"deploy must be 'apogee', 'ejection' or an altitude above ground [m], "
                                  f"got {self.deploy!r}", field="deploy")
         else:
             object.__setattr__(self, "deploy", v.positive(self.deploy, "deploy"))

@@ -64,7 +64,8 @@ REQUIRED_KEYS = {
     "rail_buttons": ("x_fore", "x_aft"), "launch_lug": ("x", "length", "outer_radius"),
     "point_mass": ("x", "mass"), "inner_tube": ("x", "length", "outer_radius"),
 }
-MOTOR_KEYS = ("file", "designation", "nozzle_x", "overrides")
+MOTOR_KEYS = ("file", "designation", "nozzle_x", "overrides", "kind", "ignition_time", "grain", "tank",
+              "ejection_delay")
 AERO_KEYS = ("table", "drag_power_off", "drag_power_on", "surface_roughness", "finish",
              "re_transition")
 LAUNCH_KEYS = ("rail_length", "inclination_deg", "heading_deg", "site_elevation",
@@ -133,8 +134,10 @@ class _Lines:
                 table = h.group(2).replace(" ", "")
                 if h.group(1) == "[[":
                     counts[table] = counts.get(table, -1) + 1
-                # a sub-table of an array element belongs to the latest element
-                occ = counts.get(table.split(".")[0], 0)
+                    occ = counts[table]
+                else:
+                    # a sub-table of an array element belongs to the latest element
+                    occ = counts.get(table.split(".")[0], 0)
                 self.index.setdefault((table, occ, None), n)
                 continue
             k = self._KEY.match(line)
@@ -550,10 +553,56 @@ def _read_motor(rd: _Reader, d):
                 raise rd.error(f"must be {'>= 0' if key == 'dry_mass' else '> 0'}, got {num}",
                                "motor.overrides", key)
             ov[key] = num
+    extra = _read_motor_kind(rd, d, ov)
     try:
-        return MotorSpec(file=file, designation=des, nozzle_x=nozzle_x, overrides=ov)
+        return MotorSpec(file=file, designation=des, nozzle_x=nozzle_x, overrides=ov, **extra)
     except InputError as exc:
         raise rd.wrap(exc, "motor", 0, "motor") from None
+
+
+def _read_motor_kind(rd: _Reader, d, ov):
+    """``kind``, ``ignition_time``, ``[motor.grain]``, ``[[motor.tank]]`` and
+    ``ejection_delay`` of ``[motor]`` (docs/rocket-toml.md)."""
+    from ironbark_opt.rocket import tank_spec as ts
+
+    out = {}
+    delay = rd.number(d, "ejection_delay", "motor")
+    if delay is not None:
+        if delay < 0:
+            raise rd.error(f"must be >= 0 s, got {delay}", "motor", "ejection_delay")
+        out["ejection_delay"] = delay
+    kind = d.get("kind", "solid")
+    if kind not in ts.MOTOR_KINDS:
+        raise rd.error(f"expected one of {', '.join(ts.MOTOR_KINDS)}, got {kind!r}", "motor", "kind")
+    if kind == "solid":
+        for key in ("ignition_time", "grain", "tank"):
+            if key in d:
+                raise rd.error(f"'{key}' needs kind = \"hybrid\" or \"liquid\"", "motor", key)
+        return out
+    out["kind"] = kind
+    t_ig = rd.number(d, "ignition_time", "motor", default=0.0)
+    if t_ig < 0:
+        raise rd.error(f"must be >= 0 s, got {t_ig}", "motor", "ignition_time")
+    out["ignition_time"] = t_ig
+    bad = [k for k in ov if k not in ts.TANK_MOTOR_OVERRIDES]
+    if bad:
+        raise rd.error(f"a {kind} motor's propellant comes from its tanks and grain; "
+                       f"[motor.overrides] accepts {', '.join(ts.TANK_MOTOR_OVERRIDES)}",
+                       "motor.overrides", bad[0])
+    for key in ("dry_mass", "dry_cg", "dry_inertia"):
+        if key not in ov:
+            raise rd.error(f"a {kind} motor needs [motor.overrides] {key}", "motor", None,
+                           field=f"motor.overrides.{key}")
+    if "tank" not in d:
+        raise rd.error(f"a {kind} motor needs [[motor.tank]] tables", "motor", field="motor.tank")
+    out["tanks"] = ts.read_tanks(rd, d["tank"])
+    if kind == "hybrid":
+        if "grain" not in d:
+            raise rd.error("a hybrid motor needs a [motor.grain] table", "motor", field="motor.grain")
+        out["grain"] = ts.read_grain(rd, d["grain"])
+    elif "grain" in d:
+        raise rd.error("a liquid motor has no grain (use kind = \"hybrid\")", "motor.grain")
+    return out
 
 
 def _read_aero(rd: _Reader, d):

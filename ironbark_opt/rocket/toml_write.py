@@ -123,8 +123,13 @@ def to_toml(rf, folder=None) -> str:
     for comp in r.components:
         lines += _table("[[component]]", _component(comp))
     m = rf.motor
+    if m.kind != "solid":
+        from ironbark_opt.errors import InputError
+        raise InputError(f"writing a {m.kind} motor's tanks back to TOML is not supported; keep the "
+                         f"original file", source=rf.source, field="motor.kind")
+    delay = m.ejection_delay if m.ejection_delay is not None and math.isfinite(m.ejection_delay) else None
     lines += _table("[motor]", {"file": _path(m.file, folder), "designation": m.designation,
-                                "nozzle_x": m.nozzle_x})
+                                "nozzle_x": m.nozzle_x, "ejection_delay": delay})
     simple = {k: v for k, v in m.overrides.items() if k != "grains"}
     if m.overrides:
         lines += _table("[motor.overrides]", simple)
@@ -153,8 +158,11 @@ def to_toml(rf, folder=None) -> str:
         when = "" if L.atmosphere_time is None else f", time = {_value(L.atmosphere_time)}"
         lines.insert(len(lines) - 1, f"atmosphere = {{file = {_value(_path(L.atmosphere_file, folder))}{when}}}")
     for rec in rf.recovery:
+        # a plugged motor has no charge: its "ejection" chutes open at apogee (vehicle.recovery_of)
+        deploy = "apogee" if rec.deploy == "ejection" and m.ejection_delay is not None and \
+            math.isinf(m.ejection_delay) else rec.deploy
         lines += _table("[[recovery]]", {"name": rec.name, "cd_area": rec.cd_area,
-                                         "deploy": rec.deploy, "lag": rec.lag})
+                                         "deploy": deploy, "lag": rec.lag})
     b = rf.ballast
     lines += _table("[ballast]", {"mass": b.mass, "x": b.x, "x_min": b.x_min,
                                   "x_max": b.x_max, "mass_max": b.mass_max})

@@ -145,6 +145,12 @@ case("toml-recovery-negative-cd", sim_k, ["kestrel.toml", "cd"],
      edits=[edit(KT, "cd = 1.5", "cd = -1.5")])
 case("toml-recovery-bad-deploy", sim_k, ["kestrel.toml", "deploy"],
      edits=[edit(KT, 'deploy = "apogee"', 'deploy = "later"')])
+case("toml-motor-kind-unknown", sim_c, ["calisto.toml", "motor.kind", "hybrid"],
+     edits=[edit(CT, 'designation = "M1670"', 'designation = "M1670"\nkind = "nuclear"')])
+case("toml-hybrid-with-solid-overrides", sim_c, ["calisto.toml", "propellant_cg", "tanks"],
+     edits=[edit(CT, 'designation = "M1670"', 'designation = "M1670"\nkind = "hybrid"')])
+case("toml-ejection-delay-negative", sim_c, ["calisto.toml", "ejection_delay", ">= 0"],
+     edits=[edit(CT, 'designation = "M1670"', 'designation = "M1670"\nejection_delay = -2.0')])
 case("toml-ballast-xmax-fwd-of-xmin", sim_k, ["kestrel.toml", "x_max"],
      edits=[edit(KT, "x_max = 0.58", "x_max = 0.40")])
 case("toml-ballast-negative-capacity", sim_k, ["kestrel.toml", "mass_max"],

@@ -97,7 +97,8 @@ def test_ork_flies_its_panel_table(env):
                                     "--alpha-deg", "0,4,8,16", "--refine", "0.5", "--workers", "1",
                                     "--out", str(stem), "--json"])
     assert res.exit_code == 0, res.output
-    base = json.loads(CliRunner().invoke(main, ["simulate", str(rocket), "--json"]).output)
+    out = CliRunner().invoke(main, ["simulate", str(rocket), "--json"]).output   # [C6-5]: an early-charge warning first
+    base = json.loads(out[out.index("{"):])
     res = CliRunner().invoke(main, ["simulate", str(rocket), "--table", f"{stem}.csv", "--json"])
     assert res.exit_code == 0, res.output
     panel = json.loads(res.output[res.output.index("{"):])
