@@ -60,7 +60,8 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
                    "processes, or a Dask scheduler.")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
               help="Write the flight at the optimum (PNG/PDF/SVG).")
-@click.option("--allow-unstable", is_flag=True, help="Accept a rocket whose static margin is below zero.")
+@click.option("--allow-unstable", is_flag=True,
+              help="Accept a rocket whose static margin falls below zero (at launch or on the solved ascent).")
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_time, forecast, site, time,
@@ -71,7 +72,7 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
     from ironbark_opt.optimise.motor_choice import choose_motor
     from ironbark_opt.errors import InputError
     from ironbark_opt.optimise.target import parse_target
-    from ironbark_opt.plausibility import check_flight_inputs, option_overrides
+    from ironbark_opt.plausibility import check_ascent_stability, check_flight_inputs, option_overrides
     from ironbark_opt.validate import number
     from ironbark_opt.vehicle import load_setup
 
@@ -106,6 +107,7 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
             raise click.UsageError(f"--solve {solve_for} takes no ballast or motor options")
         from ironbark_opt.optimise.airbrakes import solve_airbrakes
         solution = solve_airbrakes(setup, target, variable=solve_for)
+        check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
         _plot(setup, solution, plot_path)
         result = solution.to_dict()
         result["atmosphere"] = flown
@@ -123,6 +125,8 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
                                executor=executor,
                                **kwargs)
         best = ranking.best or (ranking.solutions[0] if ranking.solutions else None)
+        if best is not None:
+            check_ascent_stability(setup, allow_unstable=allow_unstable, summary=best.values)
         result = ranking.to_dict()
         if best is not None:
             result.update({k: v for k, v in best.to_dict().items() if k not in ("parameters",)})
@@ -147,6 +151,7 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
                               f"listed above); first: {label}: {message[:160]}")
         return
     solution = solve_ballast(setup, target, **kwargs)
+    check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
     _plot(setup, solution, plot_path)
     result = solution.to_dict()
     result["atmosphere"] = flown
