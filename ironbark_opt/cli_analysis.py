@@ -22,7 +22,8 @@ def _common(func):
         table_option,
         click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg] (nominal point)."),
         click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m]."),
-        click.option("--allow-unstable", is_flag=True, help="Accept a static margin below zero at launch."),
+        click.option("--allow-unstable", is_flag=True,
+                     help="Accept a static margin below zero (at launch or on the nominal ascent)."),
     ]
     for option in reversed(options):
         func = option(func)
@@ -43,6 +44,11 @@ def _load(rocket, rail_exit, config, ballast_kg, ballast_x_m, table=None, allow_
                                  body_length=setup.body_length)["parameters"]
     check_flight_inputs(setup, {**setup.nominal, **overrides}, allow_unstable=allow_unstable)
     return setup, overrides
+
+
+def _margin_line(margin: dict) -> str:
+    return f"  min static margin  {margin['static_margin_min_cal']:10.2f} cal at " \
+           f"{margin['static_margin_min_time_s']:.2f} s"
 
 
 def _agg():
@@ -77,16 +83,21 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
         from ironbark_opt.errors import InputError
         raise InputError("--ballast and --target exclude each other: the target decides the ballast",
                          field="ballast")
+    from ironbark_opt.plausibility import check_ascent_stability
+    if target is None:           # the nominal flight, checked before the derivatives are taken
+        margin = check_ascent_stability(setup, overrides, allow_unstable=allow_unstable)
     sens = sensitivities(setup, parameters=overrides, names=list(names) or None, target=target)
+    if target is not None:       # the flight at the solved ballast
+        margin = check_ascent_stability(setup, dict(sens.point), allow_unstable=allow_unstable)
     if csv_path:
         atomic_write(csv_path, lambda tmp: sens.to_dataframe().to_csv(tmp, index=False))
     if plot_path:
         _agg()
         from ironbark_opt.analysis.plots import plot_sensitivities
         atomic_write(plot_path, lambda tmp: plot_sensitivities(sens, filename=tmp))
-    result = sens.to_dict()
+    result = {**sens.to_dict(), **margin}
     result["atmosphere"], line = atmosphere_summary(setup)
-    emit(result, as_json, sens.summary() + "\n" + line)
+    emit(result, as_json, sens.summary() + "\n" + _margin_line(margin) + "\n" + line)
 
 
 @click.command("montecarlo")
@@ -149,13 +160,15 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     if kml_path:
         site_position(setup, "--kml")            # refused before the flights when the site is unknown
     spec = load_spec(spec_path)
+    from ironbark_opt.plausibility import check_ascent_stability
+    margin = check_ascent_stability(setup, overrides, allow_unstable=allow_unstable)   # before the samples
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit="auto" if jit is None else jit, executor=executor, output=results_dir)
     if csv_path:
         atomic_write(csv_path, lambda tmp: write_samples(disp, tmp))
     if samples_path:
         atomic_write(samples_path, lambda tmp: write_samples(disp, tmp))
-    result = disp.to_dict()
+    result = {**disp.to_dict(), **{f"nominal_{k}": v for k, v in margin.items()}}
     result["atmosphere"], line = atmosphere_summary(setup)
     if kml_path:
         from ironbark_opt.report.kml import dispersion_kml
@@ -168,7 +181,7 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
             atomic_write(hist_path, lambda tmp: plot_apogee_histogram(disp, filename=tmp))
         if ellipse_path:
             atomic_write(ellipse_path, lambda tmp: plot_landing_ellipse(disp, filename=tmp))
-    emit(result, as_json, disp.summary() + "\n" + line)
+    emit(result, as_json, disp.summary() + "\nnominal flight: " + _margin_line(margin) + "\n" + line)
 
 
 COMMANDS = [sensitivity_command, montecarlo_command]

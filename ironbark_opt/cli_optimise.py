@@ -69,7 +69,8 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
                    "landing ellipse: a Monte Carlo at the optimum.")
 @click.option("--card-samples", type=click.IntRange(min=2, max=100_000), default=500, show_default=True,
               help="Monte Carlo flights behind the card's band.")
-@click.option("--allow-unstable", is_flag=True, help="Accept a rocket whose static margin is below zero.")
+@click.option("--allow-unstable", is_flag=True,
+              help="Accept a rocket whose static margin falls below zero (at launch or on the solved ascent).")
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_time, forecast, site, time,
@@ -81,7 +82,7 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
     from ironbark_opt.optimise.motor_choice import choose_motor
     from ironbark_opt.errors import InputError
     from ironbark_opt.optimise.target import parse_target
-    from ironbark_opt.plausibility import check_flight_inputs, option_overrides
+    from ironbark_opt.plausibility import check_ascent_stability, check_flight_inputs, option_overrides
     from ironbark_opt.validate import number
     from ironbark_opt.vehicle import load_setup
 
@@ -124,6 +125,7 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
             raise click.UsageError(f"--solve {solve_for} takes no ballast or motor options")
         from ironbark_opt.optimise.airbrakes import solve_airbrakes
         solution = solve_airbrakes(setup, target, variable=solve_for)
+        check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
         _plot(setup, solution, plot_path)
         result = solution.to_dict()
         _card(setup, solution, result, **card)
@@ -142,6 +144,8 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
                                executor=executor,
                                **kwargs)
         best = ranking.best or (ranking.solutions[0] if ranking.solutions else None)
+        if best is not None:
+            check_ascent_stability(setup, allow_unstable=allow_unstable, summary=best.values)
         result = ranking.to_dict()
         if best is not None:
             result.update({k: v for k, v in best.to_dict().items() if k not in ("parameters",)})
@@ -168,6 +172,7 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
                               f"listed above); first: {label}: {message[:160]}")
         return
     solution = solve_ballast(setup, target, **kwargs)
+    check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
     _plot(setup, solution, plot_path)
     result = solution.to_dict()
     _card(setup, solution, result, **card)

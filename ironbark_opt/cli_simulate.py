@@ -47,7 +47,7 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
     from ironbark_opt.report.geodesy import site_position
     from ironbark_opt.vehicle import load_setup
 
-    from ironbark_opt.plausibility import check_ascent_margin, check_flight_inputs, option_overrides
+    from ironbark_opt.plausibility import check_ascent_stability, check_flight_inputs, option_overrides
 
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
@@ -72,9 +72,7 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
     if kml_path:
         site_position(setup, "--kml")            # refused before the flight when the site is unknown
     flight = simulate(setup, parameters=overrides, descent=descent, jit="auto" if jit is None else jit)
-    check_ascent_margin(flight.summary_values["static_margin_min_cal"],
-                        flight.summary_values["static_margin_min_time_s"], allow_unstable=allow_unstable,
-                        source=setup.source)
+    check_ascent_stability(setup, allow_unstable=allow_unstable, summary=flight.summary_values)
     result = flight.to_dict()
     result["rocket"] = setup.name
     result["recovery_devices"] = len(setup.parachutes)

@@ -12,7 +12,8 @@ they relate several inputs (numeric-only):
 - ballast: inside its bay and the body, at most the bay's capacity;
 - rail guides inside the body; launch angle and wind a launch can happen in;
 - thrust-to-weight at ignition;
-- static margin at launch (refused below zero unless ``allow_unstable``).
+- static margin at launch and over the flown ascent (refused below zero unless
+  ``allow_unstable``; :func:`check_ascent_stability` is the rule every command applies).
 
 Impossible values raise :class:`~ironbark_opt.errors.InputError` naming the
 field; plausible-but-unusual ones warn (``PlausibilityWarning``) naming it.
@@ -220,6 +221,27 @@ def check_flight_inputs(setup, p: dict, *, allow_unstable: bool = False, body_le
     if margin < MIN_MARGIN_CAL:
         _warn(f"static margin {margin:.2f} cal at launch is below {MIN_MARGIN_CAL:g} cal")
     return {"static_margin_launch_cal": margin}
+
+
+#: summary keys of the stability rule (every command's JSON carries them)
+MARGIN_KEYS = ("static_margin_min_cal", "static_margin_min_time_s")
+
+
+def check_ascent_stability(setup, parameters=None, *, allow_unstable: bool, summary=None) -> dict:
+    """The one stability rule of ``simulate``, ``ballast``, ``sensitivity`` and ``montecarlo``:
+    the static margin must stay >= 0 everywhere on the flown ascent (rail to apogee) of
+    the nominal flight (``parameters``: name -> SI overrides) or of the solved one (its
+    ``summary``: a flight's ``summary_values`` or a solution's ``values``); else an
+    InputError unless ``allow_unstable``. Flies the nominal flight when no ``summary``
+    is given. Returns the :data:`MARGIN_KEYS` values.
+    """
+    if summary is None:
+        from ironbark_opt.flight import simulate
+        summary = simulate(setup, parameters=parameters).summary_values
+    out = {k: float(summary[k]) for k in MARGIN_KEYS}
+    check_ascent_margin(*out.values(), allow_unstable=allow_unstable,
+                        source=getattr(getattr(setup, "stack", setup), "source", None))
+    return out
 
 
 def check_ascent_margin(min_margin: float, time_s: float, *, allow_unstable: bool, source=None) -> None:

@@ -174,17 +174,20 @@ class MotorMatch:
 def _verify(path: Path, motor, digest: str | None) -> bool | None:
     if not digest or path.suffix.lower() != ".eng":
         return None
-    from ironbark_opt.openrocket.digest import eng_digests
-    found = eng_digests(path)
-    key = getattr(motor, "designation", "")
-    value = found.get(key) or (next(iter(found.values())) if len(found) == 1 else None)
+    value = _digest_of(path, motor)
     return None if value is None else value == digest.lower()
 
 
 def _local(designation: str, manufacturer: str, dirs: list[Path], digest: str | None = None):
-    """The best local match: digest-verified first, then unverifiable, then mismatching."""
+    """The best local match: digest-verified first, then unverifiable, then mismatching.
+
+    A RASP file whose OpenRocket digest equals the .ork's is the motor the design was
+    made with whatever its header calls it: OpenRocket identifies a thrust curve by
+    that digest (``MotorDigest``) and names it from ThrustCurve.org's metadata, so the
+    136 N s AeroTech G80 file it lists as ``G80T`` has the header name ``G78``.
+    """
     found = [MotorMatch(p, m, _verify(p, m, digest))
-             for p, m in _candidates(designation, manufacturer, dirs)]
+             for p, m in _candidates(designation, manufacturer, dirs, digest)]
     for want in (True, None, False):
         for hit in found:
             if hit.verified is want:
@@ -192,7 +195,14 @@ def _local(designation: str, manufacturer: str, dirs: list[Path], digest: str | 
     return None
 
 
-def _candidates(designation: str, manufacturer: str, dirs: list[Path]):
+def _digest_of(path: Path, motor) -> str | None:
+    from ironbark_opt.openrocket.digest import eng_digests
+    found = eng_digests(path)
+    return found.get(getattr(motor, "designation", "")) or (
+        next(iter(found.values())) if len(found) == 1 else None)
+
+
+def _candidates(designation: str, manufacturer: str, dirs: list[Path], digest: str | None = None):
     from ironbark_opt.motors import read_eng, read_rse
     for d in dirs:
         if not d.is_dir():
@@ -206,7 +216,8 @@ def _candidates(designation: str, manufacturer: str, dirs: list[Path]):
             except (InputError, OSError, ValueError):
                 continue
             for m in (motors if isinstance(motors, (list, tuple)) else [motors]):
-                if matches(m, designation, manufacturer):
+                if matches(m, designation, manufacturer) or (
+                        digest and ext == ".eng" and _digest_of(path, m) == digest.lower()):
                     yield path, m
 
 

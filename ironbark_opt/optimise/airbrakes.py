@@ -196,6 +196,8 @@ def _solution(setup, value, feasible, status, *, model, p_nom, variable, target_
         "apogee_agl_m": s["apogee_agl_m"], "apogee_time_s": s["apogee_time_s"],
         "resimulated_apogee_agl_m": s["apogee_agl_m"], "apogee_error_m": s["apogee_agl_m"] - float(target_agl),
         "apogee_without_brakes_agl_m": free, "solve_time_s": time.perf_counter() - t0,
+        "static_margin_min_cal": s["static_margin_min_cal"],
+        "static_margin_min_time_s": s["static_margin_min_time_s"],
     }
     if iterations is not None:
         values["iterations"] = int(iterations)

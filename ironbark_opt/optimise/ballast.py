@@ -96,7 +96,9 @@ class BallastSolution:
                  f"  apogee             {v['apogee_agl_m']:10.1f} m AGL at {v['apogee_time_s']:.2f} s "
                  f"(re-simulated {v['resimulated_apogee_agl_m']:.1f} m)",
                  f"  rail exit          {v['rail_exit_speed_mps']:10.2f} m/s, static margin "
-                 f"{v['static_margin_rail_exit_cal']:.2f} cal"]
+                 f"{v['static_margin_rail_exit_cal']:.2f} cal",
+                 f"  min static margin  {v['static_margin_min_cal']:10.2f} cal at "
+                 f"{v['static_margin_min_time_s']:.2f} s"]
         if self.active:
             lines.append(f"  active             {', '.join(self.active)}")
         lines.append(f"  solve time         {v['solve_time_s']:10.2f} s")
@@ -274,6 +276,8 @@ def _solution(setup, model, p_nom, m_b, x_b, run, target_agl, feasible, status, 
         "rail_exit_speed_mps": s["rail_exit_speed_mps"],
         "static_margin_rail_exit_cal": s["static_margin_rail_exit_cal"],
         "max_speed_mps": s["max_speed_mps"], "launch_mass_kg": s["launch_mass_kg"],
+        "static_margin_min_cal": s["static_margin_min_cal"],
+        "static_margin_min_time_s": s["static_margin_min_time_s"],
         "zero_ballast_apogee_agl_m": float(zero_ballast_apogee),
         "solve_time_s": time.perf_counter() - t_start,
     }

@@ -125,3 +125,47 @@ def test_unstable_rocket_flies_only_with_the_flag(tmp_path):
     print(f"unstable Calisto: min margin {data['static_margin_min_cal']:.2f} cal at "
           f"{data['static_margin_min_time_s']:.2f} s; stderr: {flown.stderr.strip()}")
     assert data["static_margin_min_cal"] < 0 and "static margin" in flown.stderr
+
+
+def test_ascent_stability_is_one_rule_for_every_command(tmp_path):
+    """Calisto with its motor moved forward (nozzle at 1.50 m) and its dry CG aft (1.90 m):
+    0.54 cal at launch, but the CG moves aft as the propellant burns and the margin falls
+    below zero on the coast. simulate, ballast, sensitivity and montecarlo all refuse it
+    (exit 2, 'static margin', no output file) unless --allow-unstable; with the flag the
+    three commands flying the nominal flight report the same minimum margin (< 0)."""
+    import json
+    import shutil
+
+    from click.testing import CliRunner
+
+    from ironbark_opt.cli import main
+
+    shutil.copytree(ROOT / "examples/calisto", tmp_path / "c")
+    toml = tmp_path / "c/calisto.toml"
+    text = toml.read_text()
+    toml.write_text(text.replace("cg_x = 1.278 ", "cg_x = 1.90 ").replace("nozzle_x = 2.533 ", "nozzle_x = 1.500 "))
+    spec = str(tmp_path / "c/dispersions.toml")
+    out = tmp_path / "out.csv"
+    commands = {"simulate": ["simulate", str(toml), "--csv", str(out)],
+                "sensitivity": ["sensitivity", str(toml), "--csv", str(out)],
+                "montecarlo": ["montecarlo", str(toml), "--spec", spec, "--samples", "8", "--no-progress",
+                               "--csv", str(out)],
+                "ballast": ["ballast", str(toml), "--target", "1500m", "--plot", str(tmp_path / "b.png")]}
+    runner = CliRunner()
+    for name, args in commands.items():
+        refused = runner.invoke(main, args)
+        print(f"{name}: exit {refused.exit_code}: {refused.stderr.strip().splitlines()[-1]}")
+        assert refused.exit_code == 2, refused.stderr
+        assert "static margin falls to -" in refused.stderr and "--allow-unstable" in refused.stderr
+        assert "Traceback" not in refused.output and not out.exists() and not (tmp_path / "b.png").exists()
+    minima = {}
+    for name in ("simulate", "sensitivity", "montecarlo"):
+        flown = runner.invoke(main, commands[name] + ["--allow-unstable", "--json"])
+        assert flown.exit_code == 0, flown.stderr
+        data = json.loads(flown.stdout)
+        minima[name] = data.get("static_margin_min_cal", data.get("nominal_static_margin_min_cal"))
+        out.unlink()
+    print("minimum margins with --allow-unstable:", minima)
+    assert minima["simulate"] < 0
+    assert minima["sensitivity"] == pytest.approx(minima["simulate"], abs=1e-9)
+    assert minima["montecarlo"] == pytest.approx(minima["simulate"], abs=1e-9)
