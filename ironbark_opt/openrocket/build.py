@@ -150,38 +150,6 @@ def _aero_table_path(rocket: Rocket, doc: OrkDocument) -> Path:
     return Path(f"{stem}.json")
 
 
-#: ``<finish>`` in the .ork -> roughness height [m]: OpenRocket's ``ExternalComponent.Finish``
-#: (openrocket/openrocket 8fa969d8, core/.../rocketcomponent/ExternalComponent.java)
-ORK_FINISHES = {"rough": 500e-6, "roughunfinished": 250e-6, "unfinished": 150e-6, "normal": 60e-6,
-                "smooth": 20e-6, "optimum": 5e-6, "polished": 2e-6, "finishpolished": 0.5e-6,
-                "mirror": 0.0}
-
-
-def surface_roughness(doc: OrkDocument) -> float:
-    """The design's equivalent sand-grain roughness [m] from each external component's
-    ``<finish>`` (OpenRocket's heights, :data:`ORK_FINISHES`).
-
-    OpenRocket sums the friction of every component with its own roughness (Niskanen
-    2013, eq. 3.85); our build-up runs one boundary layer over the body and one per fin
-    set, so one height is flown: the wetted-area-weighted mean of the components'
-    heights. A component without a finish counts as regular paint (OpenRocket's default).
-    """
-    from ironbark_opt.rocket.materials import DEFAULT_ROUGHNESS
-    parts = [(c, convert.body_component(c)) for c in doc.rocket.body()]
-    parts += [(c, convert.fin_set(c)) for c in doc.rocket.components() if c.kind in FINS]
-    total = weighted = 0.0
-    for comp, built in parts:
-        name = (comp.element.text("finish") or "").strip().lower()
-        if name and name not in ORK_FINISHES:
-            raise InputError(f"unknown surface finish {name!r}; expected one of "
-                             f"{', '.join(ORK_FINISHES)}", source=doc.path, field=f"{comp.path}/finish")
-        height = ORK_FINISHES[name] if name else DEFAULT_ROUGHNESS
-        area = float(built.wetted_area())
-        total += area
-        weighted += area * height
-    return weighted / total if total > 0 else DEFAULT_ROUGHNESS
-
-
 def rocket_file(doc: OrkDocument, config: str | None = None):
     """A :class:`~ironbark_opt.rocket.toml_io.RocketFile` for one motor configuration."""
     from ironbark_opt.rocket.toml_io import RocketFile
@@ -197,7 +165,7 @@ def rocket_file(doc: OrkDocument, config: str | None = None):
     rocket = geometry(doc)
     sim = doc.simulation_for(cfg)
     launch = sim.launch if sim is not None else LaunchSpec()
-    aero = AeroSpec(table=_aero_table_path(rocket, doc), surface_roughness=surface_roughness(doc))
+    aero = AeroSpec(table=_aero_table_path(rocket, doc))
     return RocketFile(rocket, spec, aero, launch, recovery(doc, cfg.config_id), BallastSpec(), doc.path)
 
 
