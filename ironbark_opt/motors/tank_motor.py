@@ -104,10 +104,11 @@ class TankMotor(Motor):
             object.__setattr__(self, "designation", self.curve.designation)
         if not self.manufacturer:
             object.__setattr__(self, "manufacturer", self.curve.manufacturer)
-        # ignition: the first instant of thrust on the motor clock
+        # ignition: where the thrust starts to rise (the knot before the first
+        # non-zero one) on the motor clock
         t, F, _ = self.curve._knots
-        lit = t[np.nonzero(F > 0)[0]]
-        t_ig = self.ignition_time + (float(lit[0]) if lit.size else 0.0)
+        k = int(np.argmax(F > 0))
+        t_ig = self.ignition_time + float(t[k - 1] if k > 0 else t[0])
         object.__setattr__(self, "_t_ig", t_ig)
         m_tanks_ig = sum(self._tank_mass_at(k, t_ig, 0.0) for k in self.tanks)
         m_fuel0 = self.grain.mass if self.grain is not None else 0.0

@@ -134,10 +134,10 @@ class _Lines:
                 table = h.group(2).replace(" ", "")
                 if h.group(1) == "[[":
                     counts[table] = counts.get(table, -1) + 1
-                    occ = counts[table]
-                else:
-                    # a sub-table of an array element belongs to the latest element
-                    occ = counts.get(table.split(".")[0], 0)
+                # a sub-table of an array element belongs to the latest element; an
+                # array inside a plain table ([[motor.tank]]) counts its own elements
+                own = counts.get(table, 0) if h.group(1) == "[[" else 0
+                occ = counts.get(table.split(".")[0], own)
                 self.index.setdefault((table, occ, None), n)
                 continue
             k = self._KEY.match(line)

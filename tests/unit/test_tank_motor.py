@@ -199,3 +199,33 @@ def test_outflow_beyond_the_initial_mass_is_refused(folder):
     block = MOTOR.replace("liquid_mass = 12.0", "liquid_mass = 5.0", 1)
     with pytest.raises(InputError, match="negative mass"):
         _rocket_file(folder, block)
+
+
+@pytest.mark.parametrize("schedule, header, rows", [
+    # the same drain as ox_flow.csv: ullage volume V - m_l / rho_l, and liquid/gas masses
+    ("ullage", "time_s,ullage_m3", [(0.0, None), (5.5, None)]),
+    ("mass", "time_s,liquid_kg,gas_kg", [(0.0, (12.0, 0.2)), (5.5, (1.0, 0.2))]),
+])
+def test_ullage_and_mass_schedules_equal_the_flow(folder, schedule, header, rows):
+    volume = np.pi * R * R * L
+    lines = [header]
+    for t, masses in rows:
+        if schedule == "ullage":
+            lines.append(f"{t},{volume - (M_OX0 - MDOT * t) / RHO_L:.10f}")
+        else:
+            lines.append(f"{t},{masses[0]},{masses[1]}")
+    (folder / "ox_table.csv").write_text("\n".join(lines) + "\n")
+    block = MOTOR.replace('schedule = "mass_flow"\nliquid_mass = 12.0\ngas_mass = 0.2\nfile = "ox_flow.csv"',
+                          f'schedule = "{schedule}"\nfile = "ox_table.csv"')
+    tank = load_motor_for(_rocket_file(folder, block).motor).tanks[0]
+    flow = load_motor_for(_rocket_file(folder).motor).tanks[0]
+    for t in (0.0, 1.3, 4.0, 5.5, 8.0):
+        liquid, gas = tank.masses(t)
+        # (ox_flow.csv's step to 0 at 5.5 s is a 1 us ramp: 1e-6 kg more drained)
+        assert liquid == pytest.approx(flow.masses(t)[0], abs=1e-5)
+        if schedule == "ullage":          # the gas fills the ullage at its density
+            assert gas == pytest.approx(RHO_G * (volume - liquid / RHO_L), rel=1e-6)
+        else:
+            assert gas == pytest.approx(M_GAS)
+            assert tank.mass_properties(liquid, gas)[1] == pytest.approx(
+                flow.mass_properties(*flow.masses(t))[1], abs=1e-6)

@@ -74,6 +74,12 @@ def test_too_short_delay_matches_openrocket(path, index):
     print(f"  ejection at {s['ejection_time_s']:.2f} s; OpenRocket's burnout {t_burn_or:.2f} s + delay "
           f"{setup.ejection_delay:g} s = {t_burn_or + setup.ejection_delay:.2f} s")
     assert s["ejection_time_s"] == pytest.approx(t_burn_or + setup.ejection_delay, abs=0.15)
+    # speed at deployment and time of apogee against OpenRocket's stored summary
+    summ = sim.summary
+    print(f"  deployment speed {s['ejection_speed_mps']:.2f} m/s (OpenRocket {summ['deployment_speed_mps']:.2f}), "
+          f"apogee at {flight.apogee_time:.2f} s (OpenRocket {summ['time_to_apogee_s']:.2f} s)")
+    assert s["ejection_speed_mps"] == pytest.approx(summ["deployment_speed_mps"], rel=0.05)
+    assert flight.apogee_time == pytest.approx(summ["time_to_apogee_s"], rel=0.03)
 
 
 @pytest.mark.slow
