@@ -61,8 +61,10 @@ class FlightCard:
     landing_north_m: float | None = None
     landing_distance_m: float | None = None
     landing_ellipse: Mapping[str, float] | None = None
-    #: the Monte Carlo (for the page's figures; not in :meth:`to_dict`)
+    #: the Monte Carlo and the nominal ground track (east, north) [m] (for the
+    #: page's figures; not in :meth:`to_dict`)
     dispersion: object = field(default=None, repr=False, compare=False)
+    track: tuple | None = field(default=None, repr=False, compare=False)
 
     def lines(self) -> list[tuple[str, str]]:
         """(heading or label, text) rows exactly as printed on the page; a
@@ -163,7 +165,7 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
     """
     from ironbark_opt.atmosphere.files import describe_flown
 
-    s, p = flight.summary_values, flight.parameters
+    s, p, df = flight.summary_values, flight.parameters, flight.to_dataframe()
     d = describe_flown(setup.atmosphere)
     atmosphere = f"{d['model']}: {d['source']}" + (f", valid {d['valid_time']}" if d.get("valid_time") else "")
     if launch_time is None and d.get("valid_time"):
@@ -176,6 +178,8 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
     if dispersion is not None:
         a = dispersion.stats["apogee_agl_m"]
         kw.update(apogee_p05_m=a["p05"], apogee_p95_m=a["p95"], samples=dispersion.samples)
+        if "target_agl_m" in dispersion.extra:
+            kw["target_agl_m"] = float(dispersion.extra["target_agl_m"])
         if "band_m" in dispersion.extra:
             kw.update(band_m=dispersion.extra["band_m"], probability_in_band=dispersion.extra["probability_in_band"])
         if dispersion.descent:
@@ -193,7 +197,7 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
                       static_margin_min_cal=s["static_margin_min_cal"], max_mach=s["max_mach"],
                       max_dynamic_pressure_Pa=s["max_dynamic_pressure_Pa"], apogee_east_m=s["apogee_east_m"],
                       apogee_north_m=s["apogee_north_m"], apogee_per_100g_m=apogee_per_100g_m,
-                      dispersion=dispersion, **kw)
+                      dispersion=dispersion, track=(df["x_east_m"].to_numpy(), df["y_north_m"].to_numpy()), **kw)
 
 
 def _map(card, ax):
@@ -208,6 +212,8 @@ def _map(card, ax):
         ax.set_ylabel("north [m]")
         ax.set_aspect("equal", adjustable="datalim")
         ax.grid(True, alpha=0.3)
+    if card.track is not None:
+        ax.plot(*card.track, color="0.45", lw=1.0, label="ground track (nominal)")
     ax.plot([card.apogee_east_m], [card.apogee_north_m], "D", color="C4", ms=6, label="nominal apogee")
     if card.landing_east_m is not None:
         ax.plot([card.landing_east_m], [card.landing_north_m], "X", color="C3", ms=8, label="nominal landing")
