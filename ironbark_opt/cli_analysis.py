@@ -4,7 +4,8 @@ from __future__ import annotations
 import click
 
 from ironbark_opt.cli_common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
-                                     atmosphere_options, atmosphere_summary, atomic_write, atomic_write_text,
+                                     atmosphere_label, atmosphere_options, atmosphere_summary, atomic_write,
+                                     atomic_write_text,
                                      check_output_path, emit, handle_errors, json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
@@ -173,14 +174,16 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     if kml_path:
         from ironbark_opt.report.kml import dispersion_kml
         atomic_write_text(kml_path, dispersion_kml(disp, *site_position(setup), setup.site_elevation,
-                                                   atmosphere=" ".join(line.split())))
+                                                   atmosphere=atmosphere_label(setup)))
     if hist_path or ellipse_path:
         _agg()
         from ironbark_opt.analysis.plots import plot_apogee_histogram, plot_landing_ellipse
         if hist_path:
-            atomic_write(hist_path, lambda tmp: plot_apogee_histogram(disp, filename=tmp))
+            atomic_write(hist_path, lambda tmp: plot_apogee_histogram(disp, filename=tmp,
+                                                                      atmosphere=atmosphere_label(setup)))
         if ellipse_path:
-            atomic_write(ellipse_path, lambda tmp: plot_landing_ellipse(disp, filename=tmp))
+            atomic_write(ellipse_path, lambda tmp: plot_landing_ellipse(disp, filename=tmp,
+                                                                        atmosphere=atmosphere_label(setup)))
     emit(result, as_json, disp.summary() + "\nnominal flight: " + _margin_line(margin) + "\n" + line)
 
 

@@ -218,3 +218,8 @@ def atmosphere_summary(setup) -> tuple[dict, str]:
     """(``--json`` entry, summary line) naming the atmosphere ``setup`` flies."""
     from ironbark_opt.atmosphere.files import describe_flown, flown_line
     return describe_flown(setup.atmosphere), flown_line(setup.atmosphere)
+
+
+def atmosphere_label(setup) -> str:
+    """The atmosphere ``setup`` flies in a few words, for figure titles and map descriptions."""
+    return " ".join(atmosphere_summary(setup)[1].split())

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, atmosphere_load_kwargs, atmosphere_options,
-                                     atmosphere_summary, atomic_write, check_output_path, emit,
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, atmosphere_label, atmosphere_load_kwargs,
+                                     atmosphere_options, atmosphere_summary, atomic_write, check_output_path, emit,
                                      handle_errors, json_option, table_option)
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
@@ -196,7 +196,7 @@ def _plot(setup, solution, path):
     from ironbark_opt.flight import simulate
     from ironbark_opt.plots import plot_flight
     flight = simulate(setup, parameters=_at_optimum(solution))
-    atomic_write(path, lambda tmp: plot_flight(flight, filename=tmp))
+    atomic_write(path, lambda tmp: plot_flight(flight, filename=tmp, atmosphere=atmosphere_label(setup)))
 
 
 def _card(setup, solution, result, *, path, spec, samples, time=None, site=None):

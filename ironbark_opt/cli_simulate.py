@@ -4,7 +4,8 @@ from __future__ import annotations
 import click
 
 from ironbark_opt.cli_common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
-                                     atmosphere_options, atmosphere_summary, atomic_write, atomic_write_text,
+                                     atmosphere_label, atmosphere_options, atmosphere_summary, atomic_write,
+                                     atomic_write_text,
                                      check_output_path, emit, handle_errors, json_option, table_option)
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
@@ -84,12 +85,12 @@ def simulate_command(rocket, rail_length, inclination_deg, heading_deg, elevatio
         atomic_write(csv_path, lambda tmp: flight.to_dataframe().to_csv(tmp, index=False))
     if kml_path:
         from ironbark_opt.report.kml import flight_kml
-        atomic_write_text(kml_path, flight_kml(flight, *site_position(setup), atmosphere=" ".join(line.split())))
+        atomic_write_text(kml_path, flight_kml(flight, *site_position(setup), atmosphere=atmosphere_label(setup)))
     if plot_path:
         import matplotlib
         matplotlib.use("Agg")
         from ironbark_opt.plots import plot_flight
-        atomic_write(plot_path, lambda tmp: plot_flight(flight, filename=tmp))
+        atomic_write(plot_path, lambda tmp: plot_flight(flight, filename=tmp, atmosphere=atmosphere_label(setup)))
     emit(result, as_json, flight.summary() + "\n" + line)
 
 

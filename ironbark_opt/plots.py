@@ -74,13 +74,14 @@ def plot_trajectory_3d(flight, ax=None, *, filename=None):
     return _finish(fig, filename)
 
 
-def plot_flight(flight, *, filename=None):
-    """Overview: altitude, speed, acceleration, Mach, angle of attack, trajectory."""
+def plot_flight(flight, *, filename=None, atmosphere: str | None = None):
+    """Overview: altitude, speed, acceleration, Mach, angle of attack, trajectory
+    (``atmosphere``: the atmosphere flown, added to the title)."""
     fig = plt.figure(figsize=(13, 8))
     panels = (plot_altitude, plot_speed, plot_acceleration, plot_mach, plot_alpha)
     for i, func in enumerate(panels):
         func(flight, fig.add_subplot(2, 3, i + 1))
     plot_trajectory_3d(flight, fig.add_subplot(2, 3, 6, projection="3d"))
-    fig.suptitle(repr(flight), fontsize=10)
+    fig.suptitle(repr(flight) + (f"\n{atmosphere}" if atmosphere else ""), fontsize=10)
     fig.tight_layout()
     return _finish(fig, filename)

@@ -151,11 +151,11 @@ LAUNCH_MORNING = [
              "at = {'ballast_mass': sol.ballast, 'ballast_x': sol.values['ballast_x_m']}\n"
              "flight = simulate(setup, parameters=at, descent=True)\n"
              "assert abs(flight.apogee_agl - 3048.0) < 0.5"),
-    ("md", "## 3. What the day's uncertainty does to it\n\nA small Monte Carlo around the ballast (30 flights to "
+    ("md", "## 3. What the day's uncertainty does to it\n\nA small Monte Carlo around the ballast (20 flights to "
            "keep the notebook quick; use 1000+ for the real card) with the example's dispersion spec."),
     ("code", "from ironbark_opt.analysis.montecarlo import montecarlo\n"
              "from ironbark_opt.analysis.plots import plot_apogee_histogram, plot_landing_ellipse\n"
-             "disp = montecarlo(setup, ROOT / 'examples/calisto/dispersions.toml', 30, parameters=at, descent=True,\n"
+             "disp = montecarlo(setup, ROOT / 'examples/calisto/dispersions.toml', 20, parameters=at, descent=True,\n"
              "                  target='10000ft', band=50.0, progress=False)\nprint(disp.summary())\n"
              "fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4.5))\n"
              "plot_apogee_histogram(disp, a1); plot_landing_ellipse(disp, a2)\n"

@@ -15,7 +15,12 @@ from ironbark_opt.errors import InputError
 from ironbark_opt.plots import _axes, _finish
 
 
-def plot_apogee_histogram(dispersion, ax=None, *, filename=None, bins: int | str = "auto"):
+def _title(text: str, atmosphere: str | None) -> str:
+    return text if not atmosphere else f"{text}\n{atmosphere}"
+
+
+def plot_apogee_histogram(dispersion, ax=None, *, filename=None, bins: int | str = "auto",
+                          atmosphere: str | None = None):
     """Histogram of apogee AGL [m] with mean, 5-95 % range, target and band.
 
     Parameters
@@ -23,6 +28,8 @@ def plot_apogee_histogram(dispersion, ax=None, *, filename=None, bins: int | str
     dispersion : Dispersion
     bins : int or str
         As in :func:`numpy.histogram_bin_edges`.
+    atmosphere : str, optional
+        The atmosphere flown, a second title line.
     """
     apo = dispersion.to_dataframe()["apogee_agl_m"].to_numpy()
     s = dispersion.stats["apogee_agl_m"]
@@ -39,13 +46,14 @@ def plot_apogee_histogram(dispersion, ax=None, *, filename=None, bins: int | str
                        label=f"+/- {b:.0f} m: P = {extra['probability_in_band']:.2f}")
     ax.set_xlabel("apogee AGL [m]")
     ax.set_ylabel("samples")
-    ax.set_title(f"{dispersion.name}: {dispersion.samples} samples", fontsize=10)
+    ax.set_title(_title(f"{dispersion.name}: {dispersion.samples} samples", atmosphere), fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)
     return _finish(fig, filename)
 
 
-def plot_landing_ellipse(dispersion, ax=None, *, filename=None, which: str = "auto", sigmas=(1, 2, 3)):
+def plot_landing_ellipse(dispersion, ax=None, *, filename=None, which: str = "auto", sigmas=(1, 2, 3),
+                         atmosphere: str | None = None):
     """Scatter of landing (or apogee) points with their 1/2/3-sigma ellipses.
 
     Parameters
@@ -56,6 +64,8 @@ def plot_landing_ellipse(dispersion, ax=None, *, filename=None, which: str = "au
     sigmas : sequence of float
         Ellipse sizes; a Gaussian scatter has ``1 - exp(-k^2/2)`` of its
         points inside the k-sigma ellipse (39 %, 86 %, 99 %).
+    atmosphere : str, optional
+        The atmosphere flown, a second title line.
     """
     east, north, which = dispersion.positions(which)
     el = error_ellipse(east, north)
@@ -69,7 +79,8 @@ def plot_landing_ellipse(dispersion, ax=None, *, filename=None, which: str = "au
     ax.set_xlabel("east [m]")
     ax.set_ylabel("north [m]")
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_title(f"{dispersion.name}: {which} dispersion, {dispersion.samples} samples", fontsize=10)
+    ax.set_title(_title(f"{dispersion.name}: {which} dispersion, {dispersion.samples} samples", atmosphere),
+                 fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)
     return _finish(fig, filename)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import textwrap
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Mapping
 
 from ironbark_opt.errors import InputError
@@ -61,8 +61,10 @@ class FlightCard:
     landing_north_m: float | None = None
     landing_distance_m: float | None = None
     landing_ellipse: Mapping[str, float] | None = None
-    #: the Monte Carlo (for the page's figures; not in :meth:`to_dict`)
+    #: the Monte Carlo and the nominal ground track (east, north) [m] (for the
+    #: page's figures; not in :meth:`to_dict`)
     dispersion: object = field(default=None, repr=False, compare=False)
+    track: tuple | None = field(default=None, repr=False, compare=False)
 
     def lines(self) -> list[tuple[str, str]]:
         """(heading or label, text) rows exactly as printed on the page; a
@@ -109,12 +111,7 @@ class FlightCard:
 
     def to_dict(self) -> dict:
         """Unit-suffixed numbers and the printed lines (``lines``)."""
-        out = {k: getattr(self, k) for k in (
-            "rocket", "motor", "site", "launch_time", "atmosphere", "rail", "ballast_kg", "ballast_x_m",
-            "apogee_per_100g_m", "target_agl_m", "apogee_agl_m", "apogee_p05_m", "apogee_p95_m", "samples",
-            "band_m", "probability_in_band", "apogee_east_m", "apogee_north_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal",
-            "static_margin_min_cal", "max_mach", "max_dynamic_pressure_Pa", "landing_east_m", "landing_north_m",
-            "landing_distance_m")}
+        out = {f.name: getattr(self, f.name) for f in fields(self) if f.compare}   # not the figures' data
         out["landing_ellipse"] = None if self.landing_ellipse is None else dict(self.landing_ellipse)
         out["lines"] = self.text_lines()
         return out
@@ -163,7 +160,7 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
     """
     from ironbark_opt.atmosphere.files import describe_flown
 
-    s, p = flight.summary_values, flight.parameters
+    s, p, df = flight.summary_values, flight.parameters, flight.to_dataframe()
     d = describe_flown(setup.atmosphere)
     atmosphere = f"{d['model']}: {d['source']}" + (f", valid {d['valid_time']}" if d.get("valid_time") else "")
     if launch_time is None and d.get("valid_time"):
@@ -176,6 +173,8 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
     if dispersion is not None:
         a = dispersion.stats["apogee_agl_m"]
         kw.update(apogee_p05_m=a["p05"], apogee_p95_m=a["p95"], samples=dispersion.samples)
+        if "target_agl_m" in dispersion.extra:
+            kw["target_agl_m"] = float(dispersion.extra["target_agl_m"])
         if "band_m" in dispersion.extra:
             kw.update(band_m=dispersion.extra["band_m"], probability_in_band=dispersion.extra["probability_in_band"])
         if dispersion.descent:
@@ -193,7 +192,7 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
                       static_margin_min_cal=s["static_margin_min_cal"], max_mach=s["max_mach"],
                       max_dynamic_pressure_Pa=s["max_dynamic_pressure_Pa"], apogee_east_m=s["apogee_east_m"],
                       apogee_north_m=s["apogee_north_m"], apogee_per_100g_m=apogee_per_100g_m,
-                      dispersion=dispersion, **kw)
+                      dispersion=dispersion, track=(df["x_east_m"].to_numpy(), df["y_north_m"].to_numpy()), **kw)
 
 
 def _map(card, ax):
@@ -201,27 +200,27 @@ def _map(card, ax):
     disp = card.dispersion
     if disp is not None:
         from ironbark_opt.analysis.plots import plot_landing_ellipse
-        plot_landing_ellipse(disp, ax)
+        plot_landing_ellipse(disp, ax, atmosphere=_short(card.atmosphere))
     else:
         ax.plot([0.0], [0.0], "k^", ms=8, label="launch rail")
         ax.set_xlabel("east [m]")
         ax.set_ylabel("north [m]")
         ax.set_aspect("equal", adjustable="datalim")
         ax.grid(True, alpha=0.3)
+        ax.set_title(f"{card.rocket}: nominal flight\n{_short(card.atmosphere)}", fontsize=10)
+    if card.track is not None:
+        ax.plot(*card.track, color="0.45", lw=1.0, label="ground track (nominal)")
     ax.plot([card.apogee_east_m], [card.apogee_north_m], "D", color="C4", ms=6, label="nominal apogee")
     if card.landing_east_m is not None:
         ax.plot([card.landing_east_m], [card.landing_north_m], "X", color="C3", ms=8, label="nominal landing")
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=3, frameon=False)
-    which = "landing" if disp is not None and disp.descent else ("apogee" if disp is not None else "nominal")
-    ax.set_title(f"{card.rocket}: {which} map\n{_short(card.atmosphere)}", fontsize=8)
 
 
 def _band(card, ax):
     """Apogee histogram of the Monte Carlo with the 5-95 % band and the target."""
     from ironbark_opt.analysis.plots import plot_apogee_histogram
-    plot_apogee_histogram(card.dispersion, ax)
+    plot_apogee_histogram(card.dispersion, ax, atmosphere=_short(card.atmosphere))
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
-    ax.set_title(f"{card.rocket}: apogee, {card.samples} flights\n{_short(card.atmosphere)}", fontsize=8)
 
 
 def _short(atmosphere: str, width: int = 64) -> str:

@@ -48,7 +48,7 @@ def test_one_a4_page(tmp_path, suffix):
     else:
         texts = [e.text for e in ET.fromstring(data).iter("{http://www.w3.org/2000/svg}text")]
         assert set(CARD.text_lines()) <= set(texts)
-        assert "Kestrel: nominal map" in texts
+        assert "Kestrel: nominal flight" in texts
 
 
 def test_unknown_type_refused(tmp_path):
