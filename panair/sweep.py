@@ -325,6 +325,11 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     jobs = [(panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
              xref, pressure_rule, None if m >= MACH_SUPERSONIC_MIN else body_mask)
             for m in builtin]
+    if len(jobs):
+        # compile the influence kernels (or load them from the on-disk cache) once
+        # here, so the worker processes forked below inherit them
+        from .solver.kernels import warm_up
+        warm_up()
     bar = None
     if progress:
         from tqdm import tqdm
