@@ -325,6 +325,15 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     jobs = [(panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
              xref, pressure_rule, None if m >= MACH_SUPERSONIC_MIN else body_mask)
             for m in builtin]
+    # longest first (supersonic: more panels and four potential evaluations per
+    # matrix), so the last Mach numbers to finish are short ones and the workers
+    # end together; results are keyed by Mach number, the order changes nothing else
+    jobs.sort(key=lambda job: -job[0].n ** 2 * (4 if job[1] >= MACH_SUPERSONIC_MIN else 1))
+    if len(jobs):
+        # compile the influence kernels (or load them from the on-disk cache) once
+        # here, so the worker processes forked below inherit them
+        from .solver.kernels import warm_up
+        warm_up()
     bar = None
     if progress:
         from tqdm import tqdm

@@ -25,12 +25,15 @@ Formulas:
   r_k+1 + l_k) / (r_k + r_k+1 - l_k)) - |z| * |Omega|`` with ``d_k`` the
   in-plane distance of the field point to edge ``k`` (positive inside).
 
-All functions are numeric-only (NumPy, vectorised over field points and
-panels).
+All functions are numeric-only.  :func:`influence_matrices` runs the
+compiled kernel of :mod:`.kernels` (Numba) when available; the vectorised
+NumPy loop below is the reference it is tested against and the fallback.
 """
 from __future__ import annotations
 
 import numpy as np
+
+from . import kernels
 
 __all__ = ["planar_corners", "solid_angle_quads", "influence_matrices"]
 
@@ -109,7 +112,7 @@ def solid_angle_quads(points: np.ndarray, flat: np.ndarray) -> np.ndarray:
 
 def influence_matrices(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
                        self_index: np.ndarray | None = None, chunk: int = 128,
-                       out: tuple | None = None):
+                       out: tuple | None = None, backend: str = "auto"):
     """Doublet and source influence of every flat quad on every field point.
 
     Parameters
@@ -126,6 +129,9 @@ def influence_matrices(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
         Field points per vectorised block.
     out : (D, S) arrays, optional
         Add the influences into these (m, n) arrays instead of allocating.
+    backend : str
+        ``"auto"`` (compiled kernel when Numba is installed), ``"compiled"``
+        or ``"numpy"`` (the vectorised reference).
 
     Returns
     -------
@@ -145,9 +151,26 @@ def influence_matrices(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
     nu = np.cross(t_edge, normal[:, None, :])              # in-plane outward edge normal
     qx, qy, qz = (np.ascontiguousarray(flat[:, :, j].T) for j in range(3))   # (4, n)
     nux, nuy, nuz = (np.ascontiguousarray(nu[:, :, j].T) for j in range(3))
-    nx, ny, nz = normal[:, 0], normal[:, 1], normal[:, 2]
     L = length.T
     okT = ok_edge.T
+    if kernels.use_compiled(backend):
+        if not (D.flags.c_contiguous and S.flags.c_contiguous):
+            raise ValueError("out arrays must be C-contiguous")
+        kernels.laplace_influence(np.ascontiguousarray(points, float), qx, qy, qz, nux, nuy, nuz,
+                                  np.ascontiguousarray(normal, float), np.ascontiguousarray(L),
+                                  np.ascontiguousarray(okT), D, S, add)
+    else:
+        _numpy_blocks(points, qx, qy, qz, nux, nuy, nuz, normal, L, okT, D, S, add, chunk)
+    if self_index is not None:
+        rows = np.nonzero(self_index >= 0)[0]
+        D[rows, self_index[rows]] = -0.5
+    return D, S
+
+
+def _numpy_blocks(points, qx, qy, qz, nux, nuy, nuz, normal, L, okT, D, S, add, chunk):
+    """The vectorised NumPy form of :func:`influence_matrices` (reference)."""
+    m = len(points)
+    nx, ny, nz = normal[:, 0], normal[:, 1], normal[:, 2]
     for a in range(0, m, chunk):
         p = points[a:a + chunk]
         px, py, pz = p[:, 0:1], p[:, 1:2], p[:, 2:3]
@@ -189,7 +212,3 @@ def influence_matrices(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
         else:
             S[a:a + chunk] = -integral / _FOUR_PI
             D[a:a + chunk] = dmat
-    if self_index is not None:
-        rows = np.nonzero(self_index >= 0)[0]
-        D[rows, self_index[rows]] = -0.5
-    return D, S

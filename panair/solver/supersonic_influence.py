@@ -25,11 +25,15 @@ field point's projection to the edge line, R quadratic in the edge
 parameter; done in closed form (J0 - H^2 K below; our derivation, checked
 against quadrature in tests/unit/test_panair_supersonic.py).
 
-Numeric-only.
+Numeric-only.  :func:`source_potential` runs the compiled kernel of
+:mod:`.kernels` (Numba) when available; the vectorised NumPy form below is
+the reference it is tested against and the fallback.
 """
 from __future__ import annotations
 
 import numpy as np
+
+from . import kernels
 
 __all__ = ["panel_frames", "source_potential"]
 
@@ -92,7 +96,7 @@ def _antiderivative(tau, a, b, c, H2):
 
 
 def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
-                     chunk: int = 64) -> np.ndarray:
+                     chunk: int = 64, backend: str = "auto") -> np.ndarray:
     """Supersonic potential per unit source strength of flat panels.
 
     Parameters
@@ -102,6 +106,11 @@ def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
     flat, normal : ndarray (n, 4, 3), (n, 3)
         Planar panels in scaled coordinates and their unit normals; all
         must be subinclined (``panel_frames`` g1 > 0).
+    chunk : int
+        Field points per vectorised block (NumPy backend).
+    backend : str
+        ``"auto"`` (compiled kernel when Numba is installed), ``"compiled"``
+        or ``"numpy"`` (the vectorised reference).
 
     Returns
     -------
@@ -134,6 +143,12 @@ def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
     nup_all = -dt / Ls
     nuq_all = du / Ls
     a_all = ep_all**2 - eq_all**2
+    if kernels.use_compiled(backend):
+        c = np.ascontiguousarray
+        kernels.supersonic_source(c(points, float), c(cen), c(rho), c(q0), c(normal, float), c(e1),
+                                  c(e2), c(g1), c(sg), c(e1x_nx), c(uk), c(tk), c(L), c(okL),
+                                  c(ep_all), c(eq_all), c(nup_all), c(nuq_all), c(a_all), out)
+        return out
     for a0 in range(0, m, chunk):
         P = points[a0:a0 + chunk]
         d = P[:, None, :] - cen[None, :, :]

@@ -1,0 +1,291 @@
+"""Compiled panel-influence kernels (Numba), one scalar loop per point-panel pair.
+
+The formulas are those of :mod:`.influence` (Laplace source and doublet:
+Van Oosterom & Strackee 1983 eq. (8), Newman 1986 eq. (2.8)-(2.9)) and
+:mod:`.supersonic_influence` (supersonic source with the Mach-cone domain of
+dependence); those modules keep the vectorised NumPy implementations as the
+reference (``backend="numpy"``) and the fallback when Numba is missing.  The
+kernels follow the NumPy code branch for branch (a ``np.where`` becomes an
+``if`` on the branch NumPy keeps), so the two agree to rounding
+(tests/unit/test_panair_kernels.py: 1e-12 relative on the matrices).
+
+Why Numba (and not CasADi code generation or a C kernel built with the
+system compiler):
+
+* the work is branchy scalar code — the supersonic kernel clips each edge
+  to the part of it inside the upstream Mach cone, chooses one of four
+  closed forms per sub-interval and skips the point-panel pairs outside the
+  domain of dependence.  Compiled scalar loops do exactly the arithmetic
+  NumPy's masked arrays do without their temporaries (the NumPy path spends
+  most of its time allocating, sorting and masking (m, n, 4) arrays);
+  CasADi's ``if_else`` evaluates both branches and its generated code has
+  no data-dependent pair skipping;
+* Numba is a maintained library (NumFOCUS-sponsored, releases follow NumPy:
+  0.68 supports this venv's NumPy 2.4 without a downgrade), ships its own
+  LLVM in the wheel (no C compiler needed on the user's machine, unlike
+  cffi/ctypes + gcc or CasADi's codegen), and ``cache=True`` keeps the
+  machine code on disk next to this module (``__pycache__``), so a build
+  compiles once per installation, not per process;
+* the kernels stay Python source next to the NumPy reference, readable
+  by whoever checks the physics.
+
+Serial kernels (no ``parallel=True``): ``panair.sweep`` already runs one
+Mach number per process.
+
+Numeric-only.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+
+__all__ = ["HAVE_NUMBA", "use_compiled", "laplace_influence", "supersonic_source", "warm_up"]
+
+try:                                     # pragma: no cover - depends on the environment
+    if os.environ.get("IRONBARK_NO_NUMBA"):
+        raise ImportError("IRONBARK_NO_NUMBA set")
+    from numba import njit
+    HAVE_NUMBA = True
+except ImportError:                      # pragma: no cover
+    HAVE_NUMBA = False
+
+    def njit(*args, **kwargs):
+        """Stand-in decorator: the functions stay plain Python (never called
+        by the solvers, which use the NumPy path without Numba)."""
+        if args and callable(args[0]):
+            return args[0]
+        return lambda f: f
+
+_FOUR_PI = 4.0 * math.pi
+_TWO_PI = 2.0 * math.pi
+
+
+def use_compiled(backend: str) -> bool:
+    """True when ``backend`` ("auto", "compiled", "numpy") selects the kernels."""
+    if backend not in ("auto", "compiled", "numpy"):
+        raise ValueError(f"backend must be 'auto', 'compiled' or 'numpy', got {backend!r}")
+    if backend == "compiled" and not HAVE_NUMBA:
+        raise ImportError("backend='compiled' needs numba")
+    return backend != "numpy" and HAVE_NUMBA
+
+
+# ---------------------------------------------------------------- Laplace (subsonic)
+
+@njit(cache=True, nogil=True)
+def _tri_angle(Rx, Ry, Rz, r, i, j, k, dij, dik, djk):
+    """2 x signed solid angle term of triangle (i, j, k): Van Oosterom & Strackee eq. (8)."""
+    num = (Rx[i] * (Ry[j] * Rz[k] - Rz[j] * Ry[k])
+           + Ry[i] * (Rz[j] * Rx[k] - Rx[j] * Rz[k])
+           + Rz[i] * (Rx[j] * Ry[k] - Ry[j] * Rx[k]))
+    rrr = r[i] * r[j] * r[k]
+    if abs(num) <= 1e-13 * (rrr + 1e-300):
+        return 0.0
+    den = rrr + dij * r[k] + dik * r[j] + djk * r[i]
+    return 2.0 * math.atan2(num, den)
+
+
+@njit(cache=True, nogil=True)
+def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, S, add):
+    """Doublet ``D`` and source ``S`` influence (m, n) of flat quads on points (m, 3).
+
+    ``qx, qy, qz``, ``nux, nuy, nuz``, ``L``, ``ok_edge``: (4, n) corners, in-plane
+    edge normals, edge lengths and usable edges, as prepared by
+    :func:`panair.solver.influence.influence_matrices`.  With ``add`` the values
+    are added to ``D`` and ``S``."""
+    m = points.shape[0]
+    n = qx.shape[1]
+    Rx = np.empty(4)
+    Ry = np.empty(4)
+    Rz = np.empty(4)
+    r = np.empty(4)
+    for i in range(m):
+        px, py, pz = points[i, 0], points[i, 1], points[i, 2]
+        for j in range(n):
+            for k in range(4):
+                Rx[k] = qx[k, j] - px
+                Ry[k] = qy[k, j] - py
+                Rz[k] = qz[k, j] - pz
+                r[k] = math.sqrt(Rx[k] ** 2 + Ry[k] ** 2 + Rz[k] ** 2)
+            d02 = Rx[0] * Rx[2] + Ry[0] * Ry[2] + Rz[0] * Rz[2]
+            d03 = Rx[0] * Rx[3] + Ry[0] * Ry[3] + Rz[0] * Rz[3]
+            d32 = Rx[3] * Rx[2] + Ry[3] * Ry[2] + Rz[3] * Rz[2]
+            d01 = Rx[0] * Rx[1] + Ry[0] * Ry[1] + Rz[0] * Rz[1]
+            d21 = Rx[2] * Rx[1] + Ry[2] * Ry[1] + Rz[2] * Rz[1]
+            # triangles (Q1, Q4, Q3) and (Q1, Q3, Q2)
+            om = 0.0
+            om += _tri_angle(Rx, Ry, Rz, r, 0, 3, 2, d03, d02, d32)
+            om += _tri_angle(Rx, Ry, Rz, r, 0, 2, 1, d02, d01, d21)
+            dmat = -om / _FOUR_PI
+            integral = 0.0
+            for k in range(4):
+                k1 = (k + 1) % 4
+                d = -(Rx[k] * nux[k, j] + Ry[k] * nuy[k, j] + Rz[k] * nuz[k, j])
+                if ok_edge[k, j] and abs(d) > 1e-14:
+                    rs = r[k] + r[k1]
+                    lo = rs - L[k, j]
+                    if lo < 1e-300:
+                        lo = 1e-300
+                    integral += d * math.log((rs + L[k, j]) / lo)
+            z = -(Rx[0] * normal[j, 0] + Ry[0] * normal[j, 1] + Rz[0] * normal[j, 2])
+            integral -= abs(z) * abs(om)
+            if add:
+                S[i, j] -= integral / _FOUR_PI
+                D[i, j] += dmat
+            else:
+                S[i, j] = -integral / _FOUR_PI
+                D[i, j] = dmat
+
+
+# ---------------------------------------------------------------- supersonic source
+
+@njit(cache=True, nogil=True)
+def _f_at(tau, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta):
+    """F(tau) of :func:`panair.solver.supersonic_influence._antiderivative`, the
+    constants of the edge (a_safe ... beta, see :func:`_edge_integral`) given."""
+    R = a * (tau * tau) + b * tau + c
+    if R < 0.0:
+        R = 0.0
+    s = math.sqrt(R)
+    w = tau + w0
+    if lin:
+        j0 = 2.0 * s / b_safe
+    elif a > 0:
+        j0 = math.log(abs(sa * s + a_safe * w) + 1e-300) / sa
+    else:
+        den = abs(a_safe * D)
+        if den < 1e-300:
+            den = 1e-300
+        arg = a_safe * w / math.sqrt(den)
+        if arg < -1.0:
+            arg = -1.0
+        elif arg > 1.0:
+            arg = 1.0
+        j0 = -math.asin(arg) / sa
+    if not H2 > 1e-30:
+        return j0
+    if lin:
+        hk = 2.0 * math.sqrt(H2) * math.atan(s / math.sqrt(H2)) / b_safe
+    elif ratio < 0:
+        hk = math.atan2(beta * s, w) / (beta * a_safe)
+    else:
+        den = abs(w - beta * s)
+        if den < 1e-300:
+            den = 1e-300
+        hk = -0.5 * math.log(abs(w + beta * s) / den + 1e-300) / (beta * a_safe)
+    return j0 - hk
+
+
+@njit(cache=True, nogil=True)
+def _edge_integral(ta, tb, a, b, c, H2):
+    """F(tb) - F(ta), F' = sqrt(R) / (R + H2), R = a tau^2 + b tau + c: the scalar
+    form of :func:`panair.solver.supersonic_influence._antiderivative` (same
+    operations in the same order), the edge constants computed once."""
+    lin = abs(a) < 1e-12
+    a_safe = 1.0 if lin else a
+    w0 = b / (2.0 * a_safe)
+    D = c - b * b / (4.0 * a_safe)
+    b_safe = b if abs(b) > 1e-300 else 1e-300
+    sa = math.sqrt(abs(a_safe))
+    ratio = 0.0
+    beta = 0.0
+    if H2 > 1e-30 and not lin:
+        ratio = (D + H2) / a_safe
+        beta = math.sqrt(abs(ratio) / H2)
+    return (_f_at(tb, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta)
+            - _f_at(ta, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta))
+
+
+@njit(cache=True, nogil=True)
+def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all, eq_all,
+          nup_all, nuq_all, a_all):
+    """Scalar form of :func:`panair.solver.supersonic_influence._pair_potential`."""
+    dx, dy, dz = px - q0[j, 0], py - q0[j, 1], pz - q0[j, 2]
+    # summed in the order of NumPy's einsum ("kj,kj->k": (x + z) + y), the reference's:
+    # the potential is sensitive to rounding near the Mach cone (sqrt of a vanishing R)
+    h = (dx * normal[j, 0] + dz * normal[j, 2]) + dy * normal[j, 1]
+    d1 = (dx * e1[j, 0] + dz * e1[j, 2]) + dy * e1[j, 1]
+    d2 = (dx * e2[j, 0] + dz * e2[j, 2]) + dy * e2[j, 1]
+    gj = g1[j] if g1[j] > 1e-12 else 1e-12
+    sgj = sg[j]
+    U = sgj * (d1 + 2.0 * e1x_nx[j] * h / gj)
+    H2 = h * h / gj
+    integral = 0.0
+    for k in range(4):
+        pk = U - uk[j, k]
+        qk = d2 - tk[j, k]
+        ep, eq = ep_all[j, k], eq_all[j, k]
+        delta = pk * nup_all[j, k] + qk * nuq_all[j, k]
+        a = a_all[j, k]
+        b = 2.0 * (pk * ep - qk * eq)
+        c = pk * pk - qk * qk - H2
+        Lb = L[j, k]
+        disc = b * b - 4.0 * a * c
+        lin = abs(a) < 1e-12
+        if lin:
+            r1 = -c / (b if abs(b) > 1e-300 else 1e-300)
+            r2 = r1
+        else:
+            sq = math.sqrt(disc) if disc > 0.0 else 0.0
+            r1 = (-b - sq) / (2 * a)
+            r2 = (-b + sq) / (2 * a)
+        if not (disc >= 0 or lin):
+            r1 = 0.0
+            r2 = 0.0
+        lo = min(r1, r2)
+        hi = max(r1, r2)
+        lo = min(max(lo, 0.0), Lb)
+        hi = min(max(hi, 0.0), Lb)
+        # sub-intervals [0, lo], [lo, hi], [hi, Lb]; the part inside the upstream
+        # Mach cone is one of them (the cone is convex); as NumPy: the last valid one
+        total = 0.0
+        for s in range(3):
+            ta = 0.0 if s == 0 else (lo if s == 1 else hi)
+            tb = lo if s == 0 else (hi if s == 1 else Lb)
+            mid = 0.5 * (ta + tb)
+            if (tb - ta > 1e-15 * (1 + Lb)) and (a * (mid * mid) + b * mid + c > 0) \
+                    and (pk + ep * mid > 0):
+                total = _edge_integral(ta, tb, a, b, c, H2)
+        if okL[j, k]:
+            integral += delta * total
+    integral = integral / sgj
+    return -integral / _TWO_PI
+
+
+@njit(cache=True, nogil=True)
+def supersonic_source(points, cen, rho, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL,
+                      ep_all, eq_all, nup_all, nuq_all, a_all, out):
+    """Potential per unit source strength (m, n) into ``out`` (zeros outside each
+    point's upstream Mach cone); inputs as prepared by
+    :func:`panair.solver.supersonic_influence.source_potential`."""
+    m = points.shape[0]
+    n = cen.shape[0]
+    sqrt2 = math.sqrt(2.0)
+    for i in range(m):
+        px, py, pz = points[i, 0], points[i, 1], points[i, 2]
+        for j in range(n):
+            # bounding sphere outside the upstream Mach cone (45 deg scaled): no influence
+            dist = (math.hypot(py - cen[j, 1], pz - cen[j, 2]) - (px - cen[j, 0])) / sqrt2
+            if dist < rho[j] * (1 + 1e-9) + 1e-12:
+                out[i, j] = _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L,
+                                  okL, ep_all, eq_all, nup_all, nuq_all, a_all)
+            else:
+                out[i, j] = 0.0
+
+
+def warm_up():
+    """Compile (or load from the on-disk cache) both kernels on a one-panel case, so
+    worker processes forked afterwards inherit the machine code [s spent returned]."""
+    import time
+    t0 = time.perf_counter()
+    if HAVE_NUMBA:
+        from .influence import influence_matrices
+        from .supersonic_influence import source_potential
+        flat = np.array([[[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0]]])
+        nrm = np.array([[0.0, 0.0, 1.0]])
+        influence_matrices(np.array([[0.5, 0.5, 1.0]]), flat, nrm, backend="compiled")
+        flat_s = np.array([[[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [1.0, 1.0, 0.1], [1.0, 0.0, 0.0]]])
+        nrm_s = np.array([[0.1, -0.1, 0.99]]) / np.linalg.norm([0.1, -0.1, 0.99])
+        source_potential(np.array([[3.0, 0.5, 0.5]]), flat_s, nrm_s, backend="compiled")
+    return time.perf_counter() - t0
