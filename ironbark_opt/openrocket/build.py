@@ -182,6 +182,7 @@ def rocket_file(doc: OrkDocument, config: str | None = None):
     from ironbark_opt.rocket.toml_io import RocketFile
     cfg = doc.config(config)
     check_flyable(doc, cfg)
+    roughness = surface_roughness(doc)
     # The motor lit at launch first; others of the stage (air-start) by ignition time.
     ordered = sorted(cfg.motors, key=lambda me: me[1].ignition_delay)
     specs = [_motor_spec(doc, mount, entry) for mount, entry in ordered]
@@ -192,7 +193,7 @@ def rocket_file(doc: OrkDocument, config: str | None = None):
     rocket = geometry(doc)
     sim = doc.simulation_for(cfg)
     launch = sim.launch if sim is not None else LaunchSpec()
-    aero = AeroSpec(table=_aero_table_path(rocket, doc), surface_roughness=surface_roughness(doc))
+    aero = AeroSpec(table=_aero_table_path(rocket, doc), surface_roughness=roughness)
     return RocketFile(rocket, spec, aero, launch, recovery(doc, cfg.config_id), BallastSpec(), doc.path)
 
 

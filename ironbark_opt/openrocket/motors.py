@@ -153,7 +153,11 @@ def search_dirs(ork_path: Path) -> list[Path]:
     dirs = [Path(ork_path).resolve().parent]
     for part in os.environ.get("IRONBARK_MOTOR_PATH", "").split(os.pathsep):
         if part.strip():
-            dirs.append(Path(part.strip()))
+            d = Path(part.strip())
+            if d.exists() and not d.is_dir():
+                raise InputError(f"entry {d} is a file; expected directories holding .eng/.rse files, "
+                                 f"separated by '{os.pathsep}'", field="IRONBARK_MOTOR_PATH")
+            dirs.append(d)
     return dirs
 
 
