@@ -95,6 +95,8 @@ def calibrate_command(rocket, log, log_format, columns, config, table, calibrati
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
     if until_s is not None and not (0.0 < until_s < float("inf")):
         raise InputError(f"must be a time > 0 s after the log's start, got {until_s}", field="--until")
+    if until_fraction is not None and not 0.0 < until_fraction <= 1.0:      # click lets NaN through
+        raise InputError(f"must be a fraction in (0, 1], got {until_fraction}", field="--until-fraction")
     setup, flight_log = _load(rocket, log, log_format, columns, config, table, calibration_path)
     cal = calibrate(setup, flight_log, parameters=names or DEFAULT_PARAMETERS, channels=channels or None,
                     until=until_s, until_fraction=until_fraction, fit_time_offset=not no_time_offset,

@@ -578,6 +578,8 @@ case("b2-columns-no-time", cmp_c + " --columns altitude=alt_m:m", ["--columns", 
 case("b2-log-format-unknown", cmp_c + " --format nosuch", ["--format", "nosuch"], edits=[write(LOG, GENERIC)])
 case("b2-calibrate-until-negative", cal_c + " --until -5", ["--until"], edits=[write(LOG, _rrc3())])
 case("b2-calibrate-until-nan", cal_c + " --until nan", ["--until"], edits=[write(LOG, _rrc3())])
+case("b2-calibrate-until-fraction-nan", cal_c + " --until-fraction nan", ["--until-fraction"],
+     edits=[write(LOG, _rrc3())])
 case("b2-calibrate-param-unknown", cal_c + " --param wings", ["wings"], edits=[write(LOG, _rrc3())])
 case("b2-calibrate-output-ext", cal_c + " -o {T}/cal.xyz", ["--output", ".xyz"], edits=[write(LOG, _rrc3())],
      outputs=["cal.xyz"])
