@@ -27,9 +27,20 @@ def _floats(text: str, name: str) -> np.ndarray:
         vals = np.array([float(v) for v in text.split(",") if v.strip()])
     except ValueError as exc:
         raise InputError(f"expected comma-separated numbers, got {text!r}", field=name) from exc
-    if len(vals) == 0 or np.any(np.diff(vals) <= 0):
+    if len(vals) == 0 or not np.all(np.isfinite(vals)):
+        raise InputError(f"expected comma-separated finite numbers, got {text!r}", field=name)
+    if np.any(np.diff(vals) <= 0):
         raise InputError("expected a strictly increasing list", field=name)
     return vals
+
+
+#: Highest Mach number built: the methods are checked to Mach 3.95 (Allen & Perkins' fin-body
+#: tunnel data, tests/validation/test_allen_finbody.py); beyond ~5 real-gas effects start.
+MAX_MACH = 5.0
+#: Mesh refinement: panels grow with its square and the dense solve with its fourth power
+#: (refine 4 is ~16x the panels of the default mesh, already hours of solving).
+MAX_REFINE = 4.0
+MAX_WORKERS = 256
 
 
 @click.group("aero")
@@ -71,12 +82,12 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
                          field="--alpha-deg")
     if np.any(alpha_v > 90.0):
         raise InputError("total angles of attack must be within 0..90 deg", field="--alpha-deg")
-    if np.any(mach_v <= 0):
-        raise InputError("Mach numbers must be > 0", field="--mach")
-    if workers < 1:
-        raise InputError(f"must be >= 1, got {workers}", field="--workers")
-    if not refine > 0 or not np.isfinite(refine):
-        raise InputError(f"must be > 0, got {refine}", field="--refine")
+    if np.any(mach_v <= 0) or np.any(mach_v > MAX_MACH):
+        raise InputError(f"Mach numbers must be in (0, {MAX_MACH:g}]", field="--mach")
+    if not 1 <= workers <= MAX_WORKERS:
+        raise InputError(f"must be in 1..{MAX_WORKERS}, got {workers}", field="--workers")
+    if not 0 < refine <= MAX_REFINE:
+        raise InputError(f"must be in (0, {MAX_REFINE:g}], got {refine}", field="--refine")
     if out is not None:
         check_output_path(out, "--out")
     rk, aero_spec = load_rocket_geometry(rocket)

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option, table_option
+from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
+                                     json_option, table_option)
 
 _FILE_OUT = click.Path(dir_okay=False, writable=True)
 
@@ -55,12 +56,13 @@ def compare_command(rocket, log, log_format, columns, config, table, calibration
     """Simulate ROCKET and compare it with the flight LOG (apogee, times, channels)."""
     from ironbark_opt.telemetry.compare import compare_flight
 
+    check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
     setup, flight_log = _load(rocket, log, log_format, columns, config, table, calibration_path)
     comparison = compare_flight(setup, flight_log)
     if plot_path:
         _agg()
         from ironbark_opt.telemetry.plots import plot_comparison
-        plot_comparison(comparison, filename=plot_path)
+        atomic_write(plot_path, lambda tmp: plot_comparison(comparison, filename=tmp))
     emit(comparison.to_dict(), as_json, flight_log.summary() + "\n" + comparison.summary())
 
 
@@ -88,6 +90,13 @@ def calibrate_command(rocket, log, log_format, columns, config, table, calibrati
     from ironbark_opt.flight import simulate
     from ironbark_opt.telemetry.calibrate import DEFAULT_PARAMETERS, calibrate
     from ironbark_opt.telemetry.calibration_file import write_calibration
+    from ironbark_opt.errors import InputError
+    check_output_path(output, "--output", (".toml", ".json"))
+    check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
+    if until_s is not None and not (0.0 < until_s < float("inf")):
+        raise InputError(f"must be a time > 0 s after the log's start, got {until_s}", field="--until")
+    if until_fraction is not None and not 0.0 < until_fraction <= 1.0:      # click lets NaN through
+        raise InputError(f"must be a fraction in (0, 1], got {until_fraction}", field="--until-fraction")
     setup, flight_log = _load(rocket, log, log_format, columns, config, table, calibration_path)
     cal = calibrate(setup, flight_log, parameters=names or DEFAULT_PARAMETERS, channels=channels or None,
                     until=until_s, until_fraction=until_fraction, fit_time_offset=not no_time_offset,
@@ -99,7 +108,7 @@ def calibrate_command(rocket, log, log_format, columns, config, table, calibrati
     if plot_path:
         _agg()
         from ironbark_opt.telemetry.plots import plot_residuals
-        plot_residuals(cal, filename=plot_path)
+        atomic_write(plot_path, lambda tmp: plot_residuals(cal, filename=tmp))
     result = cal.to_dict()
     result.update(logged_apogee_agl_m=flight_log.apogee_agl, uncalibrated_apogee_agl_m=before,
                   calibrated_apogee_agl_m=after, uncalibrated_apogee_error_m=before - flight_log.apogee_agl,

@@ -85,6 +85,22 @@ def plot_thrust(motor, info: tc.MotorInfo, *, filename=None):
     return fig
 
 
+def check_designation(designation: str) -> None:
+    """A motor designation as ThrustCurve.org spells them (``K550W``, ``I216-CL``, ``1/4A3``,
+    ``4263L1350-P``): letters, digits and ``-/._()+ ``; a file path is refused (exit 2)."""
+    import re
+    from ironbark_opt.errors import InputError
+    text = (designation or "").strip()
+    if not text:
+        raise InputError("empty; give a motor designation such as K550W", field="designation")
+    if "\\" in text or text.lower().endswith((".eng", ".rse", ".csv")) or text.startswith(("/", ".")):
+        raise InputError(f"{text!r} is a file path; 'motor get' downloads by designation (e.g. K550W), "
+                         "a motor file is given to simulate/ballast directly", field="designation")
+    if not re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9 ._()+/-]{0,39}", text):
+        raise InputError(f"{text!r} is not a motor designation (letters, digits and -/._()+, "
+                         "e.g. K550W)", field="designation")
+
+
 @motor.command("get")
 @click.argument("designation")
 @click.option("--manufacturer", help="Needed when several manufacturers use the name.")
@@ -99,6 +115,7 @@ def plot_thrust(motor, info: tc.MotorInfo, *, filename=None):
 def get_cmd(designation, manufacturer, fmt, output_dir, plot, offline, as_json):
     """Download DESIGNATION's data file, write it and print a summary."""
     from ironbark_opt.cli_common import check_output_path
+    check_designation(designation)
     check_output_path(output_dir, "--output-dir", directory=True)
     with offline_mode(offline):
         info, simfile = tc.fetch_motor_file(designation, manufacturer=manufacturer, format=fmt)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import click
 import numpy as np
@@ -91,9 +92,15 @@ def get_cmd(model, site, lat_deg, lon_deg, elevation_m, time_iso, station, path,
             csv_path, plot_path, out_path, offline, as_json):
     """Fetch a profile over a site and print it (optionally CSV, JSON, plot)."""
     from ironbark_opt.atmosphere.ncss import parse_iso
-    from ironbark_opt.cli_common import PLOT_SUFFIXES, check_output_path
+    from ironbark_opt.cli_common import PLOT_SUFFIXES, atomic_write, check_output_path
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
+    check_output_path(out_path, "--out", (".json", ".csv"))
+    for value, option, low, high in ((top_m, "--top-m", 0.0, 1e5), (lat_deg, "--lat", -90.0, 90.0),
+                                     (lon_deg, "--lon", -180.0, 360.0), (elevation_m, "--elevation-m", -500.0, 9000.0)):
+        if value is not None and not (low <= value <= high and (option != "--top-m" or value > 0)):
+            raise InputError(f"must be a number in {'(' if option == '--top-m' else '['}{low:g}, {high:g}], "
+                             f"got {value}", field=option)
     time = parse_iso(time_iso) if time_iso else None
     if site:
         s = get_site(site)
@@ -125,24 +132,21 @@ def get_cmd(model, site, lat_deg, lon_deg, elevation_m, time_iso, station, path,
                 raise InputError("give --file and --site (or --lat/--lon)", field="--file")
             col = read_reanalysis(path, latitude=lat, longitude=lon, time=time,
                                   ground_elevation=elev)
-    if out_path and not str(out_path).lower().endswith((".json", ".csv")):
-        raise InputError("--out FILE must end in .json or .csv", field="--out")
     result = col.to_dict()
     if out_path:
         if str(out_path).lower().endswith(".json"):
             import json
             from ironbark_opt.cli_common import _clean
             text = json.dumps(_clean(result), indent=2)
-            with open(out_path, "w", encoding="utf-8") as fh:
-                fh.write(text)
+            atomic_write(out_path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
         else:
-            col.to_dataframe().to_csv(out_path, index=False)
+            atomic_write(out_path, lambda tmp: col.to_dataframe().to_csv(tmp, index=False))
         result["out"] = str(out_path)
     if csv_path:
-        col.to_dataframe().to_csv(csv_path, index=False)
+        atomic_write(csv_path, lambda tmp: col.to_dataframe().to_csv(tmp, index=False))
         result["csv"] = str(csv_path)
     if plot_path:
-        plot_profile(col, filename=plot_path)
+        atomic_write(plot_path, lambda tmp: plot_profile(col, filename=tmp))
         result["plot"] = str(plot_path)
     emit(result, as_json, _summary(col, top_m))
 

@@ -52,6 +52,7 @@ ENDPOINTS: dict[str, tuple[str, str]] = {
 }
 
 _TRUE = {"1", "true", "yes", "on"}
+_FALSE = {"0", "false", "no", "off"}
 
 
 def endpoint(name: str) -> str:
@@ -92,6 +93,9 @@ def settings() -> NetSettings:
         raise InputError(f"network settings must be numbers ({err})",
                          source=config.config_path(), field="network") from None
     env_off = os.environ.get("IRONBARK_OFFLINE")
+    if env_off and env_off.strip().lower() not in _TRUE | _FALSE:
+        raise InputError(f"expected one of {', '.join(sorted(_TRUE | _FALSE))}, got {env_off!r}",
+                         field="IRONBARK_OFFLINE")
     offline = (env_off.strip().lower() in _TRUE) if env_off else bool(net.get("offline", False))
     if timeout <= 0 or retries < 0 or backoff < 0:
         raise InputError("timeout_s must be > 0, retries and backoff_s >= 0",

@@ -177,6 +177,10 @@ def check_motor(motor, file_motor, spec, body_length: float, *, source=None) -> 
     if spec is not None and spec.nozzle_x > 1.1 * body_length:
         raise InputError(f"nozzle_x = {spec.nozzle_x:g} m is aft of the body's end ({body_length:.4g} m)",
                          source=source, field="motor.nozzle_x")
+    for i, (extra, _) in enumerate(getattr(spec, "airstart", None) or ()):
+        if extra.nozzle_x > 1.1 * body_length:
+            raise InputError(f"nozzle_x = {extra.nozzle_x:g} m is aft of the body's end ({body_length:.4g} m)",
+                             source=source, field=f"airstart[{i}].nozzle_x")
 
 
 def _launch_mass_and_cg(setup, p: dict):

@@ -151,6 +151,10 @@ def read_brake_drag(path, *, meaning: str = "increment", reference_area: float |
             vals = [float(c) for c in cells]
             if not all(math.isfinite(v) for v in vals):
                 raise InputError("non-finite value", source=path, line=n)
+            if vals[order[2]] < 0:       # a negative drag coefficient is a thrust, not a brake
+                raise InputError(f"cd must be >= 0, got {vals[order[2]]:g}", source=path, line=n, field="cd")
+            if vals[order[1]] < 0:
+                raise InputError(f"mach must be >= 0, got {vals[order[1]]:g}", source=path, line=n, field="mach")
             rows.append((n, vals[order[0]], vals[order[1]], vals[order[2]]))
     if not rows:
         raise InputError("no data rows (expected deployment_level, mach, cd)", source=path)

@@ -153,7 +153,11 @@ def search_dirs(ork_path: Path) -> list[Path]:
     dirs = [Path(ork_path).resolve().parent]
     for part in os.environ.get("IRONBARK_MOTOR_PATH", "").split(os.pathsep):
         if part.strip():
-            dirs.append(Path(part.strip()))
+            d = Path(part.strip())
+            if d.exists() and not d.is_dir():
+                raise InputError(f"entry {d} is a file; expected directories holding .eng/.rse files, "
+                                 f"separated by '{os.pathsep}'", field="IRONBARK_MOTOR_PATH")
+            dirs.append(d)
     return dirs
 
 
@@ -221,7 +225,7 @@ def _candidates(designation: str, manufacturer: str, dirs: list[Path], digest: s
                     yield path, m
 
 
-def _thrustcurve(designation: str, manufacturer: str):
+def _thrustcurve(designation: str, manufacturer: str, digest: str | None = None):
     try:
         from ironbark_opt import net
         from ironbark_opt.motors import thrustcurve as tc
@@ -231,7 +235,8 @@ def _thrustcurve(designation: str, manufacturer: str):
         info, simfile = tc.fetch_motor_file(designation, manufacturer=manufacturer or None)
         path = tc.save_file(info, simfile, net.cache_dir() / "ork-motors")
         from ironbark_opt.motors import load_motor
-        return MotorMatch(path, load_motor(path), None), ""
+        motor = load_motor(path)
+        return MotorMatch(path, motor, _verify(path, motor, digest)), ""
     except (IronbarkError, OSError) as err:
         return None, str(err)
 
@@ -257,8 +262,12 @@ def find_motor_file(designation: str, manufacturer: str, ork_path,
                           f"designed with (OpenRocket digest {digest}); using it anyway",
                           UserWarning, stacklevel=2)
         return hit
-    hit, why = _thrustcurve(designation, manufacturer)
+    hit, why = _thrustcurve(designation, manufacturer, digest)
     if hit is not None:
+        if hit.verified is False:
+            warnings.warn(f"motor {designation}: ThrustCurve.org's file {hit.path.name} differs from the motor "
+                          f"the .ork was designed with (OpenRocket digest {digest}); using it anyway",
+                          UserWarning, stacklevel=2)
         return hit
     where = ", ".join(str(d) for d in dirs)
     why = str(why).split(": connection failed")[0][:120] + (": no network" if ": connection failed" in str(why) else "")

@@ -67,7 +67,7 @@ def read_log(path, *, format: str | None = None, columns: Mapping[str, tuple[str
     if format is not None:
         by_name = {r.FORMAT: r for r in READERS}
         if format not in by_name:
-            raise InputError(f"unknown log format '{format}'; known: {', '.join(FORMATS)}", field="format")
+            raise InputError(f"unknown log format '{format}'; known: {', '.join(FORMATS)}", field="--format")
         return by_name[format].read(file)
     return _detect(file).read(file)
 

@@ -31,7 +31,14 @@ class TextFile:
 def read_text(path) -> TextFile:
     """Read ``path`` as text (UTF-8, else Latin-1; CRLF/LF/CR; gzip-compressed files too)."""
     path = Path(path)
-    raw = path.read_bytes()
+    if path.is_dir():
+        raise InputError("is a directory, not a flight log file", source=str(path))
+    try:
+        raw = path.read_bytes()
+    except FileNotFoundError:
+        raise InputError("flight log not found", source=str(path)) from None
+    except OSError as err:
+        raise InputError(f"cannot read the flight log ({err.strerror})", source=str(path)) from None
     if raw[:2] == b"\x1f\x8b":                      # gzip-compressed log (``.csv.gz``)
         import gzip
         try:
@@ -118,6 +125,9 @@ def column(rows: Rows, file: TextFile, idx: int, *, decimal_comma: bool = False,
         except ValueError:
             raise file.error(f"expected a number in column '{name}', got {row[idx]!r}",
                              line=rows.line_numbers[i], field=name) from None
+        if not np.isfinite(out[i]):       # float() reads 'nan' and 'inf': no logger writes them
+            raise file.error(f"expected a finite number in column '{name}', got {row[idx]!r}",
+                             line=rows.line_numbers[i], field=name)
     return out * scale
 
 

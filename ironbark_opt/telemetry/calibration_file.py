@@ -82,14 +82,23 @@ def write_calibration(calibration, path) -> Path:
 def read_calibration(path) -> dict[str, float]:
     """``[parameters]`` of a calibration file: name -> value (SI), validated."""
     path = Path(path)
+    if path.suffix.lower() not in (".toml", ".json"):
+        raise InputError(f"unknown calibration file type {path.suffix or '(none)'!r}; expected .toml or "
+                         ".json (as 'ironbark calibrate --output' writes)", source=path)
+    if path.is_dir():
+        raise InputError("is a directory, not a calibration file", source=path)
     try:
         text = path.read_text()
     except FileNotFoundError:
         raise InputError("calibration file not found", source=path) from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise InputError(f"cannot read the calibration file ({err})", source=path) from None
     try:
         doc = json.loads(text) if path.suffix.lower() == ".json" else tomllib.loads(text)
     except (tomllib.TOMLDecodeError, json.JSONDecodeError) as err:
         raise InputError(f"not a valid calibration file ({err})", source=path) from None
+    if not isinstance(doc, dict):
+        raise InputError("expected a table with [parameters]", source=path, field="parameters")
     body = doc.get("parameters")
     if not isinstance(body, dict) or not body:
         raise InputError("no [parameters] table (write one with 'ironbark calibrate ... --output FILE')",
@@ -101,6 +110,8 @@ def read_calibration(path) -> dict[str, float]:
                              field=f"parameters.{k}")
         if not isinstance(v, (int, float)) or isinstance(v, bool) or not math.isfinite(v):
             raise InputError(f"expected a finite number, got {v!r}", source=path, field=f"parameters.{k}")
+        if k.endswith("_scale") and not v > 0:     # a factor on thrust, drag, ...: > 0 by definition
+            raise InputError(f"a scale factor must be > 0, got {v!r}", source=path, field=f"parameters.{k}")
         out[k] = float(v)
     return out
 

@@ -234,6 +234,9 @@ def build_log(source: str, fmt: str, device: str, t, h, *, v=None, a=None, event
     med = float(np.median(dts))
     gaps = tuple((float(t[i]), float(t[i + 1])) for i in np.nonzero(dts > max(5 * med, 0.5))[0])
     i_apo = int(np.argmax(h))
+    if not h[i_apo] - h[0] > 1.0:        # [m] a flight climbs; noise on the pad does not
+        raise InputError(f"the altitude never rises more than 1 m above its first sample "
+                         f"(max {h[i_apo]:.2f} m): no liftoff in this log", source=source, field="altitude")
     if i_apo == t.size - 1:
         raise InputError("the log ends while the rocket is still climbing (truncated log?)", source=source,
                          line=None if line_numbers is None else int(np.max(line_numbers)))

@@ -34,6 +34,12 @@ def parse_column_map(text: str) -> dict[str, tuple[str, str]]:
         name, _, unit = rest.partition(":")
         out[ch] = (name.strip(), unit.strip() or {"time": "s", "altitude": "m", "vertical_speed": "m/s",
                                                   "acceleration": "m/s2"}[ch])
+        if not out[ch][0]:
+            raise InputError(f"no column name for '{ch}' in '{part}'", field="--columns")
+        units.factor(ch, out[ch][1], field="--columns")          # an unknown unit names the option
+    for req in ("time", "altitude"):
+        if req not in out:
+            raise InputError(f"the column map needs '{req}' (e.g. time=T:s,altitude=Alt:m)", field="--columns")
     return out
 
 

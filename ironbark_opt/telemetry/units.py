@@ -18,7 +18,7 @@ FACTORS = {
 }
 
 
-def factor(channel: str, unit: str, *, source=None, line=None) -> float:
+def factor(channel: str, unit: str, *, source=None, line=None, field: str | None = None) -> float:
     """SI factor of ``unit`` for ``channel`` (InputError naming the known units otherwise)."""
     table = FACTORS[channel]
     u = unit.strip()
@@ -28,4 +28,4 @@ def factor(channel: str, unit: str, *, source=None, line=None) -> float:
     if u.lower() in low:
         return low[u.lower()]
     raise InputError(f"unknown {channel} unit '{unit}'; known: {', '.join(table)}", source=source, line=line,
-                     field=channel)
+                     field=field or channel)

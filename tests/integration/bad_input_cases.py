@@ -38,14 +38,15 @@ class Case:
     edits: tuple = ()
     outputs: tuple = ()
     net: str | None = None          # "closed": ThrustCurve URL on a closed port; "loopback:<fault>"
+    env: tuple = ()                 # (NAME, value) pairs set for the run ({T}, {C}... expanded)
 
 
 CASES: list[Case] = []
 
 
-def case(id, argv, needles=(), status=2, edits=(), outputs=(), net=None):
+def case(id, argv, needles=(), status=2, edits=(), outputs=(), net=None, env=()):
     CASES.append(Case(id, tuple(argv.split()) if isinstance(argv, str) else tuple(argv),
-                      tuple(needles), status, tuple(edits), tuple(outputs), net))
+                      tuple(needles), status, tuple(edits), tuple(outputs), net, tuple(env)))
 
 
 CT = "ex/c/calisto.toml"
@@ -530,3 +531,322 @@ def _drop_column(path: Path, name: str) -> None:
     lines = [ln.split(",") for ln in path.read_text().splitlines()]
     i = lines[0].index(name)
     path.write_text("\n".join(",".join(c[:i] + c[i + 1:]) for c in lines) + "\n")
+
+
+# =========================================================================== second batch
+# Kinds the first 234 rows did not cover: flight logs and their options, calibration
+# files, [airbrakes], [[airstart]], atmosphere files, aero build/plot options, weather
+# and motor outputs, environment variables, dispersion specs, NaN/inf in numeric options.
+TEL = "{D}/telemetry"
+RRC3 = DATA / "telemetry/euroc21-sta-carl2-rrc3.csv"
+ALTOS = DATA / "telemetry/issuiuc-2021-endurance-telemetrum.csv"
+LOG = "log.csv"
+cmp_c = "flight compare {C} {T}/" + LOG
+cal_c = "calibrate {C} {T}/" + LOG
+
+
+def _head(src: Path, lines: int):
+    """The first ``lines`` lines of a log (a file cut short by a dying battery)."""
+    return "".join(src.read_text(errors="replace").splitlines(keepends=True)[:lines])
+
+
+def _rrc3(replace_row: int | None = None, value: str = "abc"):
+    """The RRC3 log with the altitude of data row ``replace_row`` replaced."""
+    rows = RRC3.read_text().splitlines(keepends=True)
+    if replace_row is not None:
+        cells = rows[replace_row].split(";")
+        cells[1] = value
+        rows[replace_row] = ";".join(cells)
+    return "".join(rows)
+
+
+def _gzip_cut(tmp: Path):
+    blob = gzip.compress(RRC3.read_bytes())
+    (tmp / "log.csv.gz").write_bytes(blob[: len(blob) // 2])
+
+
+GENERIC = "t_s,alt_m\n" + "".join(f"{0.1 * i:.1f},{max(0.0, 50 * (0.1 * i) - 2.0 * (0.1 * i) ** 2):.2f}\n"
+                                  for i in range(200))
+
+# --- flight logs (flight compare / calibrate)
+case("b2-log-missing", cmp_c.replace(LOG, "nope.csv"), ["nope.csv", "not found"])
+case("b2-log-directory", "flight compare {C} {T}/ex", ["ex", "directory"])
+case("b2-log-empty", cmp_c, ["log.csv"], edits=[write(LOG, "")])
+case("b2-log-binary", cmp_c, ["log.csv"], edits=[write(LOG, bytes(range(256)) * 8)])
+case("b2-log-foreign-motor", "flight compare {C} {CD}/Cesaroni_M1670.eng", ["cesaroni_m1670.eng", "flight log"])
+case("b2-log-foreign-toml", "calibrate {C} {C}", ["calisto.toml", "flight log"])
+case("b2-log-truncated-altos", cmp_c, ["log.csv"], edits=[write(LOG, _head(ALTOS, 4))])
+case("b2-log-truncated-rrc3", cal_c, ["log.csv"], edits=[write(LOG, _head(RRC3, 3))])
+case("b2-log-truncated-gzip", "flight compare {C} {T}/log.csv.gz", ["log.csv.gz"], edits=[_gzip_cut])
+case("b2-log-text-altitude", cmp_c, ["log.csv:41", "altitude"], edits=[write(LOG, _rrc3(40))])
+case("b2-log-inf-altitude", cmp_c, ["log.csv:41", "finite"], edits=[write(LOG, _rrc3(40, "inf"))])
+case("b2-log-no-liftoff", cmp_c + " --columns time=t_s:s,altitude=alt_m:m", ["log.csv", "liftoff"],
+     edits=[write(LOG, "t_s,alt_m\n" + "".join(f"{0.1 * i:.1f},0.0\n" for i in range(100)))])
+case("b2-columns-no-equals", cmp_c + " --columns time", ["--columns", "time"], edits=[write(LOG, GENERIC)])
+case("b2-columns-unknown-channel", cmp_c + " --columns time=t_s:s,height=alt_m:m", ["--columns", "height"],
+     edits=[write(LOG, GENERIC)])
+case("b2-columns-unknown-unit", cmp_c + " --columns time=t_s:s,altitude=alt_m:furlong",
+     ["--columns", "furlong"], edits=[write(LOG, GENERIC)])
+case("b2-columns-missing-column", cmp_c + " --columns time=Time:s,altitude=alt_m:m", ["log.csv", "time"],
+     edits=[write(LOG, GENERIC)])
+case("b2-columns-no-time", cmp_c + " --columns altitude=alt_m:m", ["--columns", "time"],
+     edits=[write(LOG, GENERIC)])
+case("b2-log-format-unknown", cmp_c + " --format nosuch", ["--format", "nosuch"], edits=[write(LOG, GENERIC)])
+case("b2-calibrate-until-negative", cal_c + " --until -5", ["--until"], edits=[write(LOG, _rrc3())])
+case("b2-calibrate-until-nan", cal_c + " --until nan", ["--until"], edits=[write(LOG, _rrc3())])
+case("b2-calibrate-until-fraction-nan", cal_c + " --until-fraction nan", ["--until-fraction"],
+     edits=[write(LOG, _rrc3())])
+case("b2-calibrate-param-unknown", cal_c + " --param wings", ["wings"], edits=[write(LOG, _rrc3())])
+case("b2-calibrate-output-ext", cal_c + " -o {T}/cal.xyz", ["--output", ".xyz"], edits=[write(LOG, _rrc3())],
+     outputs=["cal.xyz"])
+case("b2-calibrate-output-missing-folder", cal_c + " -o {T}/no/cal.toml", ["--output", "folder"],
+     edits=[write(LOG, _rrc3())])
+case("b2-compare-plot-under-file", cmp_c + " --plot {C}/cmp.png", ["--plot"], edits=[write(LOG, _rrc3())])
+
+# --- calibration files (--calibration)
+sim_cal = "simulate {C} --calibration {T}/cal.toml"
+case("b2-cal-missing", "simulate {C} --calibration {T}/nope.toml", ["nope.toml", "not found"])
+case("b2-cal-syntax", sim_cal, ["cal.toml"], edits=[write("cal.toml", "[parameters\ndrag_scale = 1\n")])
+case("b2-cal-nan", sim_cal, ["cal.toml", "drag_scale"], edits=[write("cal.toml", "[parameters]\ndrag_scale = nan\n")])
+case("b2-cal-negative", sim_cal, ["cal.toml", "thrust_scale"],
+     edits=[write("cal.toml", "[parameters]\nthrust_scale = -1.0\n")])
+case("b2-cal-string", sim_cal, ["cal.toml", "drag_scale"],
+     edits=[write("cal.toml", "[parameters]\ndrag_scale = \"big\"\n")])
+case("b2-cal-json-garbage", "simulate {C} --calibration {T}/cal.json", ["cal.json"], edits=[write("cal.json", "{")])
+case("b2-cal-no-parameters", sim_cal, ["cal.toml", "parameters"], edits=[write("cal.toml", "x = 1\n")])
+case("b2-cal-wrong-ext", "simulate {C} --calibration {T}/cal.txt", ["cal.txt"],
+     edits=[write("cal.txt", "[parameters]\ndrag_scale = 1.0\n")])
+case("b2-cal-on-montecarlo-inf", "montecarlo {C} --spec {CD}/dispersions.toml --calibration {T}/cal.toml",
+     ["cal.toml", "drag_scale"], edits=[write("cal.toml", "[parameters]\ndrag_scale = inf\n")])
+
+
+# --- [airbrakes]
+def _brakes(extra: str, table: bool = True):
+    def go(tmp: Path):
+        root = Path(__file__).resolve().parents[2]
+        if table:
+            (tmp / "ex/c/drag_airbrakes.csv").write_bytes(
+                (root / "examples/calisto_airbrakes/drag_airbrakes.csv").read_bytes())
+        toml = tmp / CT
+        toml.write_text(toml.read_text() + "\n[airbrakes]\n" + extra + "\n")
+    return go
+
+
+AB = 'drag = "drag_airbrakes.csv"\ndrag_is = "total"\n'
+case("b2-ab-drag-missing", sim_c, ["calisto.toml", "nope.csv"],
+     edits=[_brakes('drag = "nope.csv"\ntrigger = "time"\nstart = 5.4\nrate = 2.0', table=False)])
+case("b2-ab-trigger-unknown", sim_c, ["calisto.toml", "trigger"],
+     edits=[_brakes(AB + 'trigger = "sound"\nstart = 5.4\nrate = 2.0')])
+case("b2-ab-level-over-1", sim_c, ["calisto.toml", "level"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = 5.4\nrate = 2.0\nlevel = 1.5')])
+case("b2-ab-rate-negative", sim_c, ["calisto.toml", "rate"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = 5.4\nrate = -2.0')])
+case("b2-ab-time-without-rate", sim_c, ["calisto.toml", "rate"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = 5.4')])
+case("b2-ab-altitude-without-ramp", sim_c, ["calisto.toml", "ramp"],
+     edits=[_brakes(AB + 'trigger = "altitude"\nstart = 1000.0')])
+case("b2-ab-drag-is-bad", sim_c, ["calisto.toml", "drag_is"],
+     edits=[_brakes('drag = "drag_airbrakes.csv"\ndrag_is = "half"\ntrigger = "time"\nstart = 5.4\nrate = 2.0')])
+case("b2-ab-start-nan", sim_c, ["calisto.toml", "start"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = nan\nrate = 2.0')])
+case("b2-ab-unknown-key", sim_c, ["calisto.toml", "colour"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = 5.4\nrate = 2.0\ncolour = "red"')])
+case("b2-ab-table-negative-cd", sim_c, ["drag_airbrakes.csv", "cd"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = 5.4\nrate = 2.0'),
+            edit("ex/c/drag_airbrakes.csv", "0.1, 0.1, 0.7663", "0.1, 0.1, -0.7663")])
+case("b2-ab-table-nan", sim_c, ["drag_airbrakes.csv"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = 5.4\nrate = 2.0'),
+            edit("ex/c/drag_airbrakes.csv", "0.1, 0.1, 0.7663", "0.1, 0.1, nan")])
+case("b2-ab-table-not-a-grid", sim_c, ["drag_airbrakes.csv", "grid"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = 5.4\nrate = 2.0'),
+            edit("ex/c/drag_airbrakes.csv", "0.1, 0.1, 0.7663\n", "")])
+case("b2-ab-controller-file-missing", sim_c, ["calisto.toml", "nope.py"],
+     edits=[_brakes(AB + 'trigger = "controller"\ncontroller = "nope.py:ctl"\nsampling_rate = 10.0\nrate = 2.0')])
+case("b2-ab-controller-no-function", sim_c, ["ctl.py", "missing"],
+     edits=[_brakes(AB + 'trigger = "controller"\ncontroller = "ctl.py:missing"\nsampling_rate = 10.0\nrate = 2.0'),
+            write("ex/c/ctl.py", "def ctl(time_s, state):\n    return 0.0\n")])
+case("b2-ab-sampling-rate-zero", sim_c, ["calisto.toml", "sampling_rate"],
+     edits=[_brakes(AB + 'trigger = "controller"\ncontroller = "ctl.py:ctl"\nsampling_rate = 0.0\nrate = 2.0'),
+            write("ex/c/ctl.py", "def ctl(time_s, state):\n    return 0.0\n")])
+
+
+# --- [[airstart]]
+def _airstart(body: str, motor: bool = True):
+    def go(tmp: Path):
+        if motor:
+            (tmp / "ex/c/AeroTech_I211W.eng").write_bytes((DATA / "motors/AeroTech_I211W.eng").read_bytes())
+        toml = tmp / CT
+        toml.write_text(toml.read_text() + "\n[[airstart]]\n" + body + "\n")
+    return go
+
+
+case("b2-as-file-missing", sim_c, ["calisto.toml", "nope.eng"],
+     edits=[_airstart('file = "nope.eng"\nnozzle_x = 2.5\nignition_time = 4.0', motor=False)])
+case("b2-as-ignition-negative", sim_c, ["calisto.toml", "ignition_time"],
+     edits=[_airstart('file = "AeroTech_I211W.eng"\nnozzle_x = 2.5\nignition_time = -1.0')])
+case("b2-as-ignition-nan", sim_c, ["calisto.toml", "ignition_time"],
+     edits=[_airstart('file = "AeroTech_I211W.eng"\nnozzle_x = 2.5\nignition_time = nan')])
+case("b2-as-no-nozzle", sim_c, ["calisto.toml", "nozzle_x"],
+     edits=[_airstart('file = "AeroTech_I211W.eng"\nignition_time = 4.0')])
+case("b2-as-unknown-key", sim_c, ["calisto.toml", "delay"],
+     edits=[_airstart('file = "AeroTech_I211W.eng"\nnozzle_x = 2.5\nignition_time = 4.0\ndelay = 3')])
+case("b2-as-nozzle-outside-body", sim_c, ["nozzle"],
+     edits=[_airstart('file = "AeroTech_I211W.eng"\nnozzle_x = 9.0\nignition_time = 4.0')])
+
+# --- atmosphere files ([launch] atmosphere, --atmosphere)
+REAN = "{D}/weather/reanalysis/euroc_2022_all_windows.nc"
+case("b2-atm-missing", "simulate {C} --atmosphere {T}/nope.nc", ["nope.nc", "not found"])
+case("b2-atm-corrupt-nc", "simulate {C} --atmosphere {T}/bad.nc", ["bad.nc"],
+     edits=[write("bad.nc", b"CDF\x01" + bytes(range(200)))])
+case("b2-atm-truncated-nc", "simulate {C} --atmosphere {T}/cut.nc", ["cut.nc"],
+     edits=[lambda tmp: (tmp / "cut.nc").write_bytes(
+         (DATA / "weather/reanalysis/bella_lui_weather_data_ERA5.nc").read_bytes()[:5000])])
+case("b2-atm-multi-time-no-time", "simulate {C} --atmosphere " + REAN, ["euroc_2022_all_windows.nc", "time"])
+case("b2-atm-time-not-iso", "simulate {C} --atmosphere " + REAN + " --atmosphere-time yesterday",
+     ["yesterday"])
+case("b2-atm-time-outside-file", "simulate {C} --atmosphere " + REAN + " --atmosphere-time 1999-01-01T00:00Z",
+     ["euroc_2022_all_windows.nc", "1999"])
+case("b2-atm-wrong-variables-nc", "simulate {C} --atmosphere {T}/vars.nc", ["vars.nc"],
+     edits=[lambda tmp: _netcdf_without_temperature(tmp / "vars.nc")])
+case("b2-atm-json-not-monotone", "simulate {C} --atmosphere {T}/p.json", ["p.json", "altitude"],
+     edits=[write("p.json", '{"levels": {"altitude_m": [0, 2000, 1000], "temperature_K": [288.0, 275.0, 281.5],'
+                            ' "pressure_Pa": [101325, 79500, 89880]}}')])
+case("b2-atm-csv-not-monotone", "simulate {C} --atmosphere {T}/p.csv", ["p.csv", "altitude"],
+     edits=[write("p.csv", "altitude_m,temperature_K,pressure_Pa\n0,288.0,101325\n2000,275.0,79500\n"
+                           "1000,281.5,89880\n")])
+case("b2-atm-csv-negative-pressure", "simulate {C} --atmosphere {T}/p.csv", ["p.csv", "pressure"],
+     edits=[write("p.csv", "altitude_m,temperature_K,pressure_Pa\n0,288.0,101325\n1000,281.5,-89880\n"
+                           "2000,275.0,79500\n")])
+case("b2-atm-json-garbage", "simulate {C} --atmosphere {T}/p.json", ["p.json"], edits=[write("p.json", "[1, 2")])
+case("b2-atm-toml-missing-file", sim_c, ["calisto.toml", "nope.nc"],
+     edits=[edit(CT, "[launch]", '[launch]\natmosphere = "nope.nc"')])
+case("b2-atm-toml-unknown-key", sim_c, ["calisto.toml", "when"],
+     edits=[edit(CT, "[launch]", '[launch]\natmosphere = {file = "x.nc", when = "2022-10-13T12:00Z"}')])
+
+
+def _netcdf_without_temperature(path: Path):
+    """A valid netCDF3 file with the grid but no temperature (``t``) variable."""
+    import numpy as np
+    from scipy.io import netcdf_file
+    with netcdf_file(path, "w") as nc:
+        nc.createDimension("latitude", 2)
+        nc.createDimension("longitude", 2)
+        nc.createDimension("level", 3)
+        for name, values in (("latitude", [39.0, 40.0]), ("longitude", [-8.5, -7.5]),
+                             ("level", [1000.0, 850.0, 700.0])):
+            var = nc.createVariable(name, "f4", (name,))
+            var[:] = np.array(values, dtype="f4")
+        var = nc.createVariable("u", "f4", ("level", "latitude", "longitude"))
+        var[:] = np.zeros((3, 2, 2), dtype="f4")
+
+
+# --- aero build / aero plot
+case("b2-aero-build-mach-descending", "aero build {C} --mach 0.5,0.3 --out {T}/tables/x", ["--mach"],
+     outputs=["tables/x.csv"])
+case("b2-aero-build-mach-nan", "aero build {C} --mach 0.3,nan --out {T}/tables/x", ["--mach"])
+case("b2-aero-build-mach-negative", "aero build {C} --mach -0.3,0.5 --out {T}/tables/x", ["--mach"])
+case("b2-aero-build-mach-huge", "aero build {C} --mach 0.3,50 --out {T}/tables/x", ["--mach"])
+case("b2-aero-build-alpha-over-90", "aero build {C} --alpha-deg 0,95 --out {T}/tables/x", ["--alpha-deg"])
+case("b2-aero-build-alpha-nan", "aero build {C} --alpha-deg 0,nan --out {T}/tables/x", ["--alpha-deg"])
+case("b2-aero-build-refine-nan", "aero build {C} --refine nan --out {T}/tables/x", ["--refine"])
+case("b2-aero-build-refine-huge", "aero build {C} --refine 1e9 --out {T}/tables/x", ["--refine"])
+case("b2-aero-build-workers-huge", "aero build {C} --workers 1000000 --out {T}/tables/x", ["--workers"])
+case("b2-aero-build-out-is-dir", "aero build {C} --out {T}/ex", ["--out"])
+case("b2-aero-plot-json-garbage", "aero plot {T}/tables/Kestrel.csv --out {T}/p.png", ["kestrel.json"],
+     edits=[write("tables/Kestrel.json", "{not json")], outputs=["p.png"])
+case("b2-aero-plot-csv-nan", "aero plot {T}/tables/Kestrel.csv --out {T}/p.png", ["kestrel.csv"],
+     edits=[lambda tmp: _nan_in_table(tmp / "tables/Kestrel.csv")], outputs=["p.png"])
+case("b2-table-option-csv-inf", sim_k + " --table {T}/tables/Kestrel.csv", ["kestrel.csv"],
+     edits=[lambda tmp: _nan_in_table(tmp / "tables/Kestrel.csv", "inf")])
+
+
+def _nan_in_table(path: Path, value: str = "nan"):
+    rows = path.read_text().splitlines(keepends=True)
+    cells = rows[5].split(",")
+    cells[-1] = value + ("\n" if cells[-1].endswith("\n") else "")
+    rows[5] = ",".join(cells)
+    path.write_text("".join(rows))
+
+
+# --- weather get --out, motor get, motor search
+W_REAN = "weather get --model reanalysis --file {D}/weather/reanalysis/bella_lui_weather_data_ERA5.nc " \
+         "--lat 46.9 --lon 9.0 "
+case("b2-weather-out-ext", W_REAN + "--out {T}/p.xyz", ["--out", ".xyz", ".json"], outputs=["p.xyz"])
+case("b2-weather-out-missing-folder", W_REAN + "--out {T}/no/p.json", ["--out", "folder"])
+case("b2-weather-out-is-dir", W_REAN + "--out {T}/ex", ["--out"])
+case("b2-weather-top-nan", W_REAN + "--top-m nan", ["--top-m"])
+case("b2-weather-lon-inf", "weather get --model reanalysis --file {D}/weather/reanalysis/bella_lui_weather_data_ERA5.nc "
+                           "--lat 46.9 --lon inf", ["--lon"])
+case("b2-motor-get-empty", ["motor", "get", "", "--offline"], ["designation"])
+case("b2-motor-get-path-like", "motor get {T}/x.eng --offline", ["x.eng"])
+case("b2-motor-get-symbols", ["motor", "get", "%%%", "--offline"], ["designation", "%%%"])
+case("b2-motor-search-diameter-nan", "motor search --diameter-mm nan --offline", ["--diameter-mm"])
+case("b2-motor-search-max-results-huge", "motor search --manufacturer AeroTech --max-results 1000000000 --offline",
+     ["--max-results"])
+
+# --- .ork configurations, finishes and the motor search path
+ORK_AS = "{ORK:Airstart timing.ork}"
+case("b2-ork-config-nonexistent-id", ["simulate", ORK1, "--config", "deadbeef"], ["config", "deadbeef"])
+case("b2-ork-config-nonexistent-motor", ["simulate", ORK1, "--config", "[Z9000]"], ["config", "z9000"])
+case("b2-ork-config-whitespace", ["simulate", ORK1, "--config", "   "], ["config"])
+
+
+def _ork_finish(tmp: Path):
+    path = tmp / "ork" / "01.One-stage_OR22.02.ork"
+    with zipfile.ZipFile(path) as z:
+        xml = z.read("rocket.ork").decode()
+    xml = xml.replace("<finish>smooth</finish>", "<finish>glossy</finish>", 1)
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w") as z:
+        z.writestr("rocket.ork", xml)
+    path.write_bytes(buf.getvalue())
+
+
+case("b2-ork-unknown-finish", ["simulate", ORK1], ["finish", "glossy"], edits=[_ork_finish])
+
+case("b2-env-motor-path-is-file", ["simulate", ORK1], ["ironbark_motor_path", "calisto.toml", "director"],
+     env=[("IRONBARK_MOTOR_PATH", "{C}")])
+case("b2-env-offline-garbage", ["simulate", ORK1], ["ironbark_offline"], env=[("IRONBARK_OFFLINE", "maybe")])
+
+# --- dispersion specs
+mc_spec = "montecarlo {C} --spec {T}/spec.toml --samples 4 --no-progress"
+case("b2-spec-negative-std", mc_spec, ["spec.toml", "std"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "normal"\nstd = -0.05\n')])
+case("b2-spec-nan-std", mc_spec, ["spec.toml", "std"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "normal"\nstd = nan\n')])
+case("b2-spec-inf-mean", mc_spec, ["spec.toml", "mean"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "normal"\nmean = inf\nstd = 0.05\n')])
+case("b2-spec-uniform-low-above-high", mc_spec, ["spec.toml", "low"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "uniform"\nlow = 1.2\nhigh = 0.8\n')])
+case("b2-spec-unknown-distribution", mc_spec, ["spec.toml", "distribution"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "lognormal"\nstd = 0.05\n')])
+case("b2-spec-sample-file-missing", mc_spec, ["spec.toml", "nope.csv"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "file"\nfile = "nope.csv"\n'
+                               'column = "drag_scale"\n')])
+case("b2-spec-sample-file-nan", mc_spec, ["s.csv"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "file"\nfile = "s.csv"\n'
+                               'column = "drag_scale"\n'),
+            write("s.csv", "drag_scale\n1.0\nnan\n0.98\n")])
+case("b2-spec-sample-file-column-missing", mc_spec, ["s.csv", "drag"],
+     edits=[write("spec.toml", '[parameters.drag_scale]\ndistribution = "file"\nfile = "s.csv"\n'
+                               'column = "drag"\n'),
+            write("s.csv", "drag_scale\n1.0\n0.98\n")])
+case("b2-spec-seed-negative", mc_spec, ["spec.toml", "seed"],
+     edits=[write("spec.toml", 'seed = -1\n[parameters.drag_scale]\ndistribution = "normal"\nstd = 0.05\n')])
+case("b2-spec-seed-float", mc_spec, ["spec.toml", "seed"],
+     edits=[write("spec.toml", 'seed = 1.5\n[parameters.drag_scale]\ndistribution = "normal"\nstd = 0.05\n')])
+case("b2-spec-is-directory", "montecarlo {C} --spec {T}/ex --samples 4", ["ex", "directory"])
+
+# --- NaN / inf in numeric options
+case("b2-opt-elevation-inf", sim_c + " --elevation inf", ["--elevation"])
+case("b2-opt-rail-inf", sim_c + " --rail-length inf", ["--rail-length"])
+case("b2-opt-ballast-inf", sim_c + " --ballast inf", ["--ballast"])
+case("b2-sens-ballast-x-inf", "sensitivity {C} --ballast 0.5 --ballast-x inf", ["--ballast-x"])
+case("b2-mc-band-inf", "montecarlo {C} --spec {CD}/dispersions.toml --target 3000m --band inf", ["--band"])
+case("b2-mc-ballast-nan", "montecarlo {C} --spec {CD}/dispersions.toml --ballast nan", ["--ballast"])
+case("b2-ballast-min-margin-inf", "ballast {C} --target 3000m --min-margin inf", ["--min-margin"])
+case("b2-ballast-min-rail-speed-nan", "ballast {C} --target 3000m --min-rail-speed nan", ["--min-rail-speed"])
+case("b2-ballast-max-inf", "ballast {C} --target 3000m --max-ballast inf", ["--max-ballast"])
+case("b2-ballast-target-inf", "ballast {C} --target inf", ["target"])
+case("b2-sens-target-nan", "sensitivity {C} --target nanm", ["target"])
+case("b2-mc-target-inf", "montecarlo {C} --spec {CD}/dispersions.toml --target infm", ["target"])

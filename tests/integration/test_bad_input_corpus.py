@@ -108,6 +108,9 @@ def _check(case, status, stdout, stderr, tmp):
 def test_bad_input(case, tmp_path, monkeypatch, closed_port_url, loopback_factory):
     argv = _prepare(tmp_path, case)
     _network(case, monkeypatch, tmp_path, closed_port_url, loopback_factory)
+    for name, value in case.env:
+        monkeypatch.setenv(name, value.replace("{C}", str(tmp_path / "ex/c/calisto.toml"))
+                           .replace("{T}", str(tmp_path)))
     monkeypatch.chdir(tmp_path)
     res = CliRunner().invoke(main, argv, catch_exceptions=True)
     if res.exception is not None and not isinstance(res.exception, SystemExit):

@@ -60,6 +60,11 @@ def test_compare_and_calibrate_with_motor_from_thrustcurve(name, tc_server, tmp_
     res = runner.invoke(main, ["flight", "compare", ork, log, "--json"])
     assert res.exit_code == 0, res.output
     assert f"{API}/search.json" in tc_server.paths() and f"{API}/download.json" in tc_server.paths()
+    # the downloaded file is the very motor the team designed with (OpenRocket's digest in the .ork)
+    from ironbark_opt.openrocket import read_ork
+    from ironbark_opt.openrocket.motors import find_motor_file
+    entry = next(e for _, e in read_ork(ork).config(None).motors)
+    assert find_motor_file(entry.designation, entry.manufacturer, ork, entry.digest).verified is True
     before = json.loads(res.stdout)
     cal_file = tmp_path / "cal.toml"
     res = runner.invoke(main, ["calibrate", ork, log, "--until-fraction", "0.6", "-o", str(cal_file),
