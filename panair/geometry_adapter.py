@@ -47,6 +47,13 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
         # fin in the x-z plane for an even count, a fin on top for an odd one) as the
         # mesh's angle from +z toward +y
         roll = (np.pi / 2 - fs.roll_angle) % (2 * np.pi)
+        if fs.count >= 4 and fs.count % 2 == 0:
+            # The table is in polar (total angle of attack) axes, so it stands for every
+            # roll angle; for three or more equally spaced fins the linear normal force is
+            # roll-independent (sum of sin^2 over the fins = N/2, Barrowman 1967 sec. 3),
+            # so an even count is meshed with no fin in the symmetry plane (a half model,
+            # a quarter of the dense solve's work) whatever the set's own roll.
+            roll = np.pi / fs.count
         if outline is None:
             root, tip, sweep = fs.root_chord, fs.tip_chord, fs.sweep_length
         else:
@@ -83,5 +90,17 @@ def _continue_past_fins(x, r, fins):
 
 
 def is_symmetric(geom: RocketGeometry) -> bool:
-    """True if a half model (x-z symmetry plane) is valid for ``geom``."""
-    return all(int(f.count) % 2 == 0 for f in geom.fins)
+    """True if a half model (x-z symmetry plane) is valid for ``geom``: every fin set is
+    its own mirror image in the x-z plane (its roll angles phi from +z toward +y map onto
+    themselves under phi -> -phi) and no fin lies in that plane (a fin there would be cut
+    in half; such layouts, e.g. four fins rolled 0 deg, are meshed whole)."""
+    for f in geom.fins:
+        n = int(f.count)
+        phi = (f.roll + 2 * np.pi * np.arange(n) / n) % (2 * np.pi)
+        if np.any(np.abs(np.sin(phi)) < 1e-9):
+            return False
+        mirrored = (-phi) % (2 * np.pi)
+        gap = np.abs((mirrored[:, None] - phi[None, :] + np.pi) % (2 * np.pi) - np.pi)
+        if not np.all(gap.min(axis=1) < 1e-9):
+            return False
+    return True
