@@ -108,7 +108,8 @@ class Flight:
         if "booster_landing_time_s" in s:
             lines.append(f"  booster            apogee {s['booster_apogee_agl_m']:.1f} m AGL at "
                          f"{s['booster_apogee_time_s']:.2f} s, lands at {s['booster_landing_time_s']:.1f} s, "
-                         f"{s['booster_landing_east_m']:.1f} m east, {s['booster_landing_north_m']:.1f} m north")
+                         f"{s['booster_landing_east_m']:.1f} m east, {s['booster_landing_north_m']:.1f} m north"
+                         + (" (tumbling)" if s.get("booster_tumble_cd_area_m2", 0.0) > 0 else ""))
         if "airbrake_max_deployment" in s:
             lines.append(f"  air brakes         {s['airbrake_max_deployment']:10.3f} max deployment, opening from "
                          f"{s['airbrake_open_time_s']:.2f} s at up to {s['airbrake_max_rate_per_s']:.2f} /s")

@@ -32,7 +32,9 @@ STREAMER_CD = 0.6
 _IGNITE_AT_LAUNCH = ("automatic", "launch", "ignition")
 
 
-def _single_stage(doc: OrkDocument, what: str, instead: str) -> None:
+def _single_stage(doc: OrkDocument, what: str, instead: str,
+                  pods: str = "cannot be converted to one rocket file; the flight commands (e.g. "
+                              "'simulate') fly it from the .ork") -> None:
     """InputError naming the second stage of a multi-stage rocket."""
     if len(doc.rocket.stages) > 1:
         s = doc.rocket.stages[1]
@@ -40,8 +42,7 @@ def _single_stage(doc: OrkDocument, what: str, instead: str) -> None:
                          f"to {instead}", source=doc.path, field=s.path)
     if doc.rocket.pods:
         s = doc.rocket.pods[0]
-        raise InputError(f"parallel boosters '{s.name}': {what} not supported yet for them (the flight "
-                         f"commands, e.g. 'simulate', fly them from the .ork)", source=doc.path, field=s.path)
+        raise InputError(f"a rocket with parallel boosters ('{s.name}') {pods}", source=doc.path, field=s.path)
 
 
 def check_flyable(doc: OrkDocument, config) -> None:
@@ -188,7 +189,8 @@ def load_ork_geometry(path) -> Rocket:
     Raises InputError for a damaged file or an unsupported component, and for
     more than one stage (the table would mesh the stack)."""
     doc = read_ork(path)
-    _single_stage(doc, "multi-stage rockets are", "build the sustainer's table")
+    _single_stage(doc, "multi-stage rockets are", "build the sustainer's table",
+                  "cannot be meshed for a table yet (remove the boosters to build the core's)")
     return geometry(doc)
 
 

@@ -166,7 +166,7 @@ def test_unsupported_features_name_the_component(monkeypatch, tmp_path):
     monkeypatch.setenv("IRONBARK_OFFLINE", "1")
     monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
     # parallel boosters are read and fly (tests/validation/test_ork_parallel.py), not as one rocket file
-    with pytest.raises(InputError, match="parallel boosters 'Booster Set'") as err:
+    with pytest.raises(InputError, match="parallel boosters \\('Booster Set'\\)") as err:
         load_ork(DATA / "Parallel booster staging.ork")
     assert err.value.field.endswith("parallelstage[1]")
     with pytest.raises(InputError, match="multi-stage.*'Booster'") as err:
