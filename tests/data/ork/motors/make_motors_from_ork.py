@@ -1,11 +1,10 @@
-"""Write motor files from the flights OpenRocket stored in two of the .ork fixtures.
+"""Write a motor file from the flight OpenRocket stored in one of the .ork fixtures.
 
 No file of these motors as OpenRocket flew them is among the shared fixtures:
 
 - AeroTech I115W ('Parallel booster staging.ork', simulation 2 flies it alone);
-- AeroTech G80T ('01.One-stage_OR22.02.ork', simulation 2): the shared
-  G80T files are other certifications (94 and ~100 N s); OpenRocket 22.02's
-  G80T (digest bc77ef06...) delivers 134 N s over 1.81 s.
+(The G80T of '01.One-stage_OR22.02.ork' is OpenRocket's own file, AeroTech_G80_1.eng,
+found by its digest; see tests/data/ork/README.md.)
 
 Each simulation's stored thrust and motor-mass columns are the motor
 OpenRocket flew: the thrust samples up to burnout (the zero at ignition
@@ -20,8 +19,7 @@ from ironbark_opt.openrocket.xmlread import read_xml
 
 HERE = Path(__file__).parent
 #: (output file, .ork fixture, simulation index, RASP header: name, diameter [mm], length [mm], delays, maker)
-MOTORS = [("AeroTech_I115W.eng", "Parallel booster staging.ork", 1, ("I115W", 54, 156, "10", "AeroTech")),
-          ("AeroTech_G80T.eng", "01.One-stage_OR22.02.ork", 1, ("G80T", 29, 124, "10", "AeroTech"))]
+MOTORS = [("AeroTech_I115W.eng", "Parallel booster staging.ork", 1, ("I115W", 54, 156, "10", "AeroTech"))]
 
 for out, ork, index, (name, dia, length, delays, maker) in MOTORS:
     sim = simulations(read_xml(HERE.parent / ork))[index]
