@@ -45,7 +45,10 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
     if site is None:
         raise click.UsageError("window needs --site NAME (see 'ironbark weather sites')")
     where = get_site(site)
-    t0 = parse_iso(start)
+    try:
+        t0 = parse_iso(start)
+    except InputError as err:
+        raise InputError(err.message, field="--from") from None
     for value, option in ((band, "--band"), (max_rail_wind, "--max-rail-wind"), (min_margin, "--min-margin"),
                           (min_rail_speed, "--min-rail-speed"), (max_ballast, "--max-ballast")):
         if value is not None:
@@ -67,10 +70,9 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
     setup = load_setup(rocket)
     limits = WindowLimits(max_rail_wind=max_rail_wind, min_margin=min_margin, min_rail_speed=min_rail_speed)
 
-    def progress(k, row):
-        if not as_json:
-            state = "no forecast" if "error" in row else ("go" if row["go"] else "no-go")
-            click.echo(f"  {row['time_utc']}: {state}", err=True)
+    def progress(k, row):       # flown hours only: a run where none flies ends in one error line
+        if not as_json and "error" not in row:
+            click.echo(f"  {row['time_utc']}: flown, {'go' if row['go'] else 'no-go'}", err=True)
 
     result = launch_window(setup, forecast, where, t0, hours, step_hours=step_hours, target=target, band=band,
                            spec=spec, samples=samples, seed=seed, limits=limits,

@@ -81,7 +81,9 @@ class LaunchWindow:
     ``static_margin_rail_exit_cal``, ``static_margin_min_cal``, ``max_mach``,
     ``max_dynamic_pressure_Pa``, ``apogee_east_m``/``apogee_north_m``/``apogee_drift_m``,
     ``landing_east_m``/``landing_north_m``/``landing_distance_m``, ``ballast_kg``,
-    ``ballast_x_m``, ``probability_in_band``, ``go``, ``no_go_reasons``, ``atmosphere``),
+    ``ballast_x_m``, ``probability_in_band``, ``landing_ellipse`` (1-sigma, from the Monte
+    Carlo: ``center_east_m``, ``semi_major_m``, ``azimuth_deg``, ...), ``go``, ``no_go_reasons``,
+    ``atmosphere``),
     or ``{"time_utc", "error"}`` for an hour without a forecast.
     """
 
@@ -169,10 +171,11 @@ def fly_hour(setup, *, target=None, band=None, spec=None, samples=200, seed=None
     if spec is not None:
         from ironbark_opt.analysis.montecarlo import montecarlo
         mc = montecarlo(setup, spec, samples, seed=seed, target=target, band=band if target is not None else None,
-                        parameters=overrides, progress=False, jit=False, model=model)
+                        parameters=overrides, progress=False, jit=False, model=model, descent=True)
         a = mc.stats["apogee_agl_m"]
         row.update(apogee_mean_agl_m=a["mean"], apogee_p05_agl_m=a["p05"], apogee_p95_agl_m=a["p95"],
-                   monte_carlo_samples=int(samples), monte_carlo_seed=mc.seed)
+                   monte_carlo_samples=int(samples), monte_carlo_seed=mc.seed,
+                   landing_ellipse=dict(mc.extra["landing_ellipse"]))
         if "probability_in_band" in mc.extra:
             row.update(probability_in_band=mc.extra["probability_in_band"],
                        probability_in_band_stderr=mc.extra["probability_in_band_stderr"])
@@ -278,9 +281,11 @@ def plot_window(window: LaunchWindow, filename=None):
     rows = window.flown
     hrs = np.array([r["hour_offset_h"] for r in rows])
     t0 = window.hours[0]["time_utc"][:16].replace("T", " ")
-    panels = [("apogee AGL [m]", [("apogee_agl_m", "nominal apogee")]),
+    apogee_label = "apogee with the hour's ballast" if window.target_agl_m else "apogee"
+    panels = [("apogee AGL [m]", [("apogee_agl_m", apogee_label)]),
               ("distance [m]", [("apogee_drift_m", "apogee drift"), ("landing_distance_m", "landing distance")]),
-              ("speed [m/s]", [("rail_exit_speed_mps", "rail-exit speed"), ("rail_exit_wind_mps", "wind at rail exit")]),
+              ("speed [m/s]", [("rail_exit_speed_mps", "rail-exit speed"),
+                               ("rail_exit_wind_mps", "wind at rail exit")]),
               ("ballast [kg]", [("ballast_kg", "ballast needed" if window.target_agl_m else "ballast flown")])]
     if any("probability_in_band" in r for r in rows):
         panels.append(("P(in band) [-]", [("probability_in_band", f"P(|apogee - target| <= {window.band_m:g} m)")]))
@@ -301,16 +306,16 @@ def plot_window(window: LaunchWindow, filename=None):
         for h in nogo:
             ax.axvspan(h - 0.5, h + 0.5, color="tab:red", alpha=0.08, lw=0)
         handles, labels = ax.get_legend_handles_labels()
-        if nogo:
+        if nogo and ax is axes[0]:
             handles.append(Patch(color="tab:red", alpha=0.15))
             labels.append("no-go hour")
         ax.legend(handles, labels, fontsize=7, loc="best")
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel(f"hours after {t0} UTC [h]")
-    source = rows[0].get("atmosphere", window.forecast.upper())
+    source = rows[0].get("atmosphere", window.forecast.upper()).split(" http")[0]
     fig.suptitle(f"Launch window: {window.name} ({window.motor}) at {window.site}\n"
-                 f"atmosphere: {window.forecast.upper()} forecast ({source.split(' via ')[-1][:70]})", fontsize=10)
+                 f"atmosphere: {source} forecast, one profile per hour", fontsize=10)
     fig.tight_layout()
     if filename is not None:
         fig.savefig(filename, dpi=120)

@@ -84,7 +84,9 @@ def test_window_twelve_hours_table_plot_json(thredds, tmp_path, monkeypatch):
         for key in h:   # the JSON contract: unit-suffixed keys (or dimensionless by nature)
             assert key.endswith(("_m", "_s", "_kg", "_mps", "_cal", "_Pa", "_utc", "_h")) or key in {
                 "max_mach", "go", "no_go_reasons", "atmosphere", "probability_in_band",
-                "probability_in_band_stderr", "monte_carlo_samples", "monte_carlo_seed", "ballast_feasible"}, key
+                "probability_in_band_stderr", "monte_carlo_samples", "monte_carlo_seed", "ballast_feasible",
+                "landing_ellipse"}, key
+        assert h["landing_ellipse"]["semi_major_m"] >= h["landing_ellipse"]["semi_minor_m"] > 0
     # a stronger westerly drifts the rocket further: more ballast needed as the wind rises
     # (weathercocking into the wind costs apogee), and the apogee drifts further downwind
     assert hours[-1]["ballast_kg"] < hours[0]["ballast_kg"]
