@@ -445,6 +445,8 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
     values = {"ballast_kg": m_opt, "ballast_x_m": x_opt, "nominal_ballast_kg": nv["ballast_kg"],
               "nominal_ballast_x_m": nv["ballast_x_m"], "target_agl_m": target_agl, "band_m": float(band),
               "kernel_width_m": width,
+              "saa_smoothed_objective": smoothed_objective(a_rob, target_agl, objective, band, width)[0],
+              "saa_nominal_smoothed_objective": smoothed_objective(a_nom, target_agl, objective, band, width)[0],
               "saa_probability_in_band": float(np.mean(np.abs(a_rob - target_agl) <= band)),
               "saa_nominal_probability_in_band": float(np.mean(np.abs(a_nom - target_agl) <= band)),
               "saa_expected_abs_miss_m": float(np.mean(np.abs(a_rob - target_agl))),
