@@ -2,7 +2,7 @@
 
 For Calisto (target 3000 m AGL) and Kestrel (10,000 ft AGL) with their example
 dispersion specs: one nominal ``solve_ballast`` (warm: model and NLP built),
-then ``solve_robust_ballast`` with the default 64 SAA samples and no check
+then ``solve_robust_ballast`` with the default 40 SAA samples and no check
 (the robust solve includes its own nominal solve, the starting point).  The
 compiled per-sample event function is built (or loaded from the disk cache)
 by a first, untimed robust call; its one-off compile time is printed too.
@@ -27,7 +27,7 @@ CASES = [("calisto", "3000m"), ("kestrel", "10000ft")]
 
 
 def main():
-    samples = int(sys.argv[1]) if len(sys.argv) > 1 else 64
+    samples = int(sys.argv[1]) if len(sys.argv) > 1 else 40
     for name, target in CASES:
         setup = load_setup(ROOT / "examples" / name / f"{name}.toml")
         spec = ROOT / "examples" / name / "dispersions.toml"

@@ -43,7 +43,7 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--spec", "spec_path", type=click.Path(dir_okay=False), help="Dispersion spec for --robust.")
 @click.option("--band", type=float, default=50.0, show_default=True,
               help="--robust: half-width of the scoring band around the target [m].")
-@click.option("--samples", type=int, default=64, show_default=True,
+@click.option("--samples", type=int, default=40, show_default=True,
               help="--robust: samples of the sample-average approximation (one fixed set).")
 @click.option("--check-samples", type=int, default=1000, show_default=True,
               help="--robust: fresh samples checking both ballasts (another seed; 0: none).")

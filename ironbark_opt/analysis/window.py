@@ -29,7 +29,8 @@ import numpy as np
 from ironbark_opt.errors import InputError, NetworkError
 
 #: Per-hour numbers, their labels and units for the table and the plot.
-COLUMNS = (("apogee_agl_m", "apogee", "m"), ("apogee_drift_m", "apogee drift", "m"),
+COLUMNS = (("apogee_agl_m", "apogee", "m"), ("apogee_p05_agl_m", "apogee p05", "m"),
+           ("apogee_p95_agl_m", "apogee p95", "m"), ("apogee_drift_m", "apogee drift", "m"),
            ("landing_distance_m", "landing", "m"), ("rail_exit_speed_mps", "rail exit", "m/s"),
            ("rail_exit_wind_mps", "wind@rail", "m/s"), ("static_margin_rail_exit_cal", "margin", "cal"),
            ("ballast_kg", "ballast", "kg"), ("probability_in_band", "P(band)", "-"))

@@ -351,7 +351,7 @@ def check_ballasts(model, spec, p_nominal, ballasts, target_agl, band, samples, 
 
 
 def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", band: float = 50.0,
-                         samples: int = 64, seed: int | None = None, check_samples: int = 1000,
+                         samples: int = 40, seed: int | None = None, check_samples: int = 1000,
                          check_seed: int | None = None, free_position: bool = False,
                          mass_max: float | None = None, x_range=None, ballast_x: float | None = None,
                          parameters: Mapping[str, float] | None = None,
