@@ -18,12 +18,13 @@ from ironbark_opt.cli_common import OneLineErrorGroup
 
 #: every module that contributes commands (its ``COMMANDS`` list)
 _MODULES = ("cli_simulate", "cli_optimise", "cli_analysis", "cli_ork", "cli_motor", "cli_weather", "cli_aero",
-            "cli_flight")
+            "cli_flight", "cli_window")
 #: the module that defines a command, so one command imports one module; a command
 #: not listed here is still found (every module in ``_MODULES`` is then imported)
 _HOME = {"simulate": "cli_simulate", "ballast": "cli_optimise", "sensitivity": "cli_analysis",
          "montecarlo": "cli_analysis", "ork": "cli_ork", "motor": "cli_motor", "weather": "cli_weather",
-         "aero": "cli_aero", "flight": "cli_flight", "calibrate": "cli_flight"}
+         "aero": "cli_aero", "flight": "cli_flight", "calibrate": "cli_flight",
+         "window": "cli_window"}
 
 
 class LazyGroup(OneLineErrorGroup):

@@ -166,6 +166,15 @@ def atomic_write_text(path, text: str) -> None:
     atomic_write(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
 
 
+def forecast_option(required: bool = False, help: str = "Fly through a NOAA forecast profile (needs --site "
+                                                               "and --time)."):
+    """The shared ``--forecast rap|gfs`` option (``required`` for commands that need one)."""
+    return click.option("--forecast", type=click.Choice(["rap", "gfs"]), required=required, help=help)
+
+
+site_option = click.option("--site", help="Launch-site preset for the forecast (see 'ironbark weather sites').")
+
+
 def atmosphere_options(func):
     """The atmosphere options every flying command shares (one definition):
     ``--atmosphere FILE [--atmosphere-time T]`` or ``--forecast rap|gfs --site
@@ -179,9 +188,8 @@ def atmosphere_options(func):
         click.option("--atmosphere-time", "atmosphere_time", metavar="ISO",
                      help="Launch time (ISO 8601 UTC) picking the record of a multi-time "
                           "--atmosphere reanalysis file."),
-        click.option("--forecast", type=click.Choice(["rap", "gfs"]),
-                     help="Fly through a NOAA forecast profile (needs --site and --time)."),
-        click.option("--site", help="Launch-site preset for the forecast (see 'ironbark weather sites')."),
+        forecast_option(),
+        site_option,
         click.option("--time", help="Launch time for the forecast, ISO 8601 UTC."),
     ]
     for option in reversed(options):

@@ -10,6 +10,7 @@ from ironbark_opt.cli_common import (PLOT_SUFFIXES, atmosphere_label, atmosphere
                                      atmosphere_options, atmosphere_summary, atomic_write, check_output_path, emit,
                                      handle_errors, json_option, table_option)
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
+from ironbark_opt.optimise.robust import OBJECTIVES as ROBUST_OBJECTIVES
 from ironbark_opt.vehicle import RAIL_EXIT_RULES
 
 
@@ -21,17 +22,11 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
         return setup
     if time is None:
         raise click.UsageError("--forecast needs --time ISO (UTC launch time)")
-    from ironbark_opt.atmosphere.forecast import forecast_profile
-    from ironbark_opt.atmosphere.sites import get_site
+    from ironbark_opt.atmosphere.forecast import setup_with_forecast
 
     if site is None:
         raise click.UsageError("--forecast needs --site NAME (see 'ironbark weather sites')")
-    where = get_site(site)
-    columns = forecast_profile(model, time, site=where)
-    lat, elevation = where.latitude, where.elevation
-    elevation = columns.ground_elevation if columns.ground_elevation is not None else elevation
-    return dataclasses.replace(setup, atmosphere=columns.to_profile(), site_elevation=float(elevation), latitude=lat,
-                               longitude=where.longitude)
+    return setup_with_forecast(setup, model, time, site)[0]
 
 
 @click.command("ballast")
@@ -39,8 +34,20 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--target", required=True, help="Target apogee, e.g. 30000ft, 3000m, '10000ft ASL'.")
 @click.option("--motor", "motors", multiple=True,
               help="Candidate motor: file, folder of files, or ThrustCurve.org name (repeatable).")
-@click.option("--objective", type=click.Choice(OBJECTIVES), default="least_ballast", show_default=True,
-              help="How to rank feasible motors.")
+@click.option("--objective", type=click.Choice(OBJECTIVES + ROBUST_OBJECTIVES),
+              help="How to rank feasible motors (default least_ballast), or with --robust what to "
+                   "optimise: in_band (default, P(|apogee - target| <= band)) or expected_abs_miss.")
+@click.option("--robust", is_flag=True,
+              help="Choose the ballast that scores best under the --spec dispersions (sample-average "
+                   "approximation, IPOPT) and check it against the nominal ballast on fresh samples.")
+@click.option("--spec", "spec_path", type=click.Path(dir_okay=False), help="Dispersion spec for --robust.")
+@click.option("--band", type=float, default=50.0, show_default=True,
+              help="--robust: half-width of the scoring band around the target [m].")
+@click.option("--samples", type=int, default=40, show_default=True,
+              help="--robust: samples of the sample-average approximation (one fixed set).")
+@click.option("--check-samples", type=int, default=1000, show_default=True,
+              help="--robust: fresh samples checking both ballasts (another seed; 0: none).")
+@click.option("--seed", type=int, help="--robust: seed of the samples (default: the spec's; the check uses seed+1).")
 @atmosphere_options
 @click.option("--min-rail-speed", type=float, help="Minimum rail-exit speed [m/s].")
 @click.option("--min-margin", type=float, help="Minimum static margin at rail exit [calibers].")
@@ -73,7 +80,8 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
               help="Accept a rocket whose static margin falls below zero (at launch or on the solved ascent).")
 @json_option
 @handle_errors
-def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_time, forecast, site, time,
+def ballast_command(rocket, target, motors, objective, robust, spec_path, band, samples, check_samples, seed,
+                    atmosphere, atmosphere_time, forecast, site, time,
                     min_rail_speed, min_margin, max_ballast, ballast_x, free_position, rail_exit, solve_for,
                     table, calibration_path, processes, executor, plot_path, card_path, card_spec, card_samples,
                     allow_unstable, as_json):
@@ -91,6 +99,9 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
     check_output_path(card_path, "--card", CARD_SUFFIXES)
     if card_spec is not None and card_path is None:
         raise click.UsageError("--card-spec needs --card FILE")
+    objective = _check_robust_options(robust, objective, spec_path, motors, solve_for, min_rail_speed, min_margin)
+    if robust and card_path is not None:
+        raise click.UsageError("--card is written for a nominal solve; it does not take --robust")
     if processes is not None and processes < 1:
         raise InputError(f"must be >= 1, got {processes}", field="--processes")
     for value, option in ((min_margin, "--min-margin"), (min_rail_speed, "--min-rail-speed")):
@@ -171,6 +182,19 @@ def ballast_command(rocket, target, motors, objective, atmosphere, atmosphere_ti
             raise SolverError(f"no candidate motor could be solved ({len(ranking.failures)} failed, "
                               f"listed above); first: {label}: {message[:160]}")
         return
+    if robust:
+        from ironbark_opt.optimise.robust import solve_robust_ballast
+        kwargs = {k: v for k, v in kwargs.items() if k not in ("min_rail_speed", "min_margin")}
+        solution = solve_robust_ballast(setup, target, spec_path, objective=objective, band=band, samples=samples,
+                                        seed=seed, check_samples=check_samples, **kwargs)
+        check_ascent_stability(setup, {"ballast_mass": solution.values["ballast_kg"],
+                                       "ballast_x": solution.values["ballast_x_m"]},
+                               allow_unstable=allow_unstable)
+        _plot(setup, solution, plot_path)
+        result = solution.to_dict()
+        result["atmosphere"] = flown
+        emit(result, as_json, solution.summary() + "\n" + flown_line)
+        return
     solution = solve_ballast(setup, target, **kwargs)
     check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
     _plot(setup, solution, plot_path)
@@ -185,6 +209,23 @@ def _at_optimum(solution) -> dict:
     if hasattr(solution, "variable"):                 # an AirbrakeSolution
         return dict(solution.parameters)
     return {"ballast_mass": solution.values["ballast_kg"], "ballast_x": solution.values["ballast_x_m"]}
+
+
+def _check_robust_options(robust, objective, spec_path, motors, solve_for, min_rail_speed, min_margin):
+    """The objective to use; usage errors for option combinations --robust does not take."""
+    if not robust:
+        if objective in ROBUST_OBJECTIVES or spec_path is not None:
+            raise click.UsageError(f"--objective {objective or ''} / --spec belong to --robust".replace("  ", " "))
+        return objective or "least_ballast"
+    if spec_path is None:
+        raise click.UsageError("--robust needs --spec dispersions.toml")
+    if motors or solve_for != "ballast":
+        raise click.UsageError("--robust solves the ballast of one motor (no --motor, no --solve)")
+    if min_rail_speed is not None or min_margin is not None:
+        raise click.UsageError("--robust takes no --min-rail-speed/--min-margin (the nominal solve shows them)")
+    if objective is not None and objective not in ROBUST_OBJECTIVES:
+        raise click.UsageError(f"--robust optimises {' or '.join(ROBUST_OBJECTIVES)}, not {objective}")
+    return objective or "in_band"
 
 
 def _plot(setup, solution, path):

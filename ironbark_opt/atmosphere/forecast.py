@@ -131,3 +131,15 @@ def forecast_profile(model: str, time: datetime | str, *, site: Site | str | Non
     text = (f"no {MODEL_NAMES[model]} forecast for {time:%Y-%m-%dT%H:%MZ} from any source:\n  "
             + "\n  ".join(failures))
     raise NetworkError(text) if network_failed else InputError(text, field="time")
+
+
+def setup_with_forecast(setup, model: str, time, site: Site | str):
+    """``setup`` flying the ``model`` forecast at ``time`` over ``site`` (its ground as the
+    site elevation, its latitude for gravity): ``(new setup, ProfileColumns)``."""
+    import dataclasses
+
+    where = get_site(site) if isinstance(site, str) else site
+    columns = forecast_profile(model, time, site=where)
+    elevation = columns.ground_elevation if columns.ground_elevation is not None else where.elevation
+    return dataclasses.replace(setup, atmosphere=columns.to_profile(), site_elevation=float(elevation),
+                               latitude=where.latitude, longitude=where.longitude), columns

@@ -50,6 +50,7 @@ def case(id, argv, needles=(), status=2, edits=(), outputs=(), net=None, env=())
 
 
 CT = "ex/c/calisto.toml"
+CD_SPEC = "ex/c/dispersions.toml"
 KT = "ex/k/kestrel.toml"
 CE = "ex/c/Cesaroni_M1670.eng"
 KE = "ex/k/Cesaroni_4263L1350-P.eng"
@@ -380,6 +381,26 @@ case("ballast-unstable", ball_c, ["static margin", "--allow-unstable"],
      edits=[edit(CT, "cg_x = 1.278", "cg_x = 2.40")])
 case("ballast-toml-broken", ball_c, ["calisto.toml:", "syntax"],
      edits=[edit(CT, 'name = "Calisto"', 'name = "Calisto')])
+rob_c = ball_c + " --robust --spec {CD}/dispersions.toml --check-samples 0"
+case("ballast-robust-no-spec", ball_c + " --robust", ["--spec"])
+case("ballast-robust-spec-missing", ball_c + " --robust --spec {T}/nope.toml", ["nope.toml", "not found"])
+case("ballast-robust-objective-motor", rob_c + " --objective least_ballast", ["--robust", "in_band"])
+case("ballast-robust-objective-no-flag", ball_c + " --objective in_band", ["--robust"])
+case("ballast-robust-band-negative", rob_c + " --band -5", ["band"])
+case("ballast-robust-samples-few", rob_c + " --samples 2", ["samples"])
+case("ballast-robust-with-motor", rob_c + " --motor {CD}/Cesaroni_M1670.eng", ["--robust", "--motor"])
+case("ballast-robust-spec-disperses-ballast", rob_c, ["dispersions.toml", "ballast_mass"],
+     edits=[(CD_SPEC, None, '[parameters.ballast_mass]\ndistribution = "normal"\nstd = 0.1\n')])
+WIN = "window {C} --forecast rap --site spaceport --from 2025-06-20T15:00Z"
+case("window-from-not-a-time", "window {C} --forecast rap --site spaceport --from tomorrow", ["--from", "iso"])
+case("window-hours-zero", WIN + " --hours 0", ["--hours"])
+case("window-no-site", "window {C} --forecast rap --from 2025-06-20T15:00Z", ["--site"])
+case("window-site-unknown", "window {C} --forecast rap --site atlantis --from 2025-06-20T15:00Z", ["atlantis"])
+case("window-forecast-unknown", "window {C} --forecast ecmwf --site spaceport --from 2025-06-20T15:00Z",
+     ["--forecast"])
+case("window-band-zero", WIN + " --band 0", ["--band"])
+case("window-plot-suffix", WIN + " --plot {T}/w.txt", ["--plot"], outputs=["w.txt"])
+case("window-spec-missing", WIN + " --spec {T}/nope.toml", ["nope.toml", "not found"])
 MC = "montecarlo {C} --spec {CD}/dispersions.toml --no-progress"
 case("mc-samples-huge", MC + " --samples 1000000000000", ["--samples"])
 case("mc-samples-zero", MC + " --samples 0", ["--samples"])
@@ -467,6 +488,8 @@ case("net-offline-not-cached", "motor get K550W --offline -o {T}", ["cache", "of
 case("net-ballast-name-closed-port", ball_c + " --motor K550W", ["k550w"], status=3, net="closed")
 case("net-forecast-closed-port", ball_c + " --forecast rap --site spaceport --time 2025-06-20T15:00Z",
      ["cache"], status=3, net="closed")
+case("net-window-closed-port", WIN + " --hours 2 --plot {T}/w.png", ["cache"], status=3, net="closed",
+     outputs=["w.png"])
 
 
 # --------------------------------------------------------------------------- helpers

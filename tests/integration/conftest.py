@@ -31,10 +31,13 @@ class Route:
     truncate: bool = False        # announce the full length, send half, close
     fail_first: int = 0           # answer 500 to the first N requests
     calls: int = 0
+    #: (query parameter, {value: body}): the body chosen by one query value (e.g. an NCSS ``time``)
+    by_query: tuple | None = None
 
 
 class Loopback:
-    """Routes keyed by URL path (query strings are recorded, not matched)."""
+    """Routes keyed by URL path (query strings are recorded, not matched, unless a route
+    picks its body by one query parameter: ``Route.by_query``)."""
 
     def __init__(self):
         self.routes: dict[str, Route] = {}
@@ -66,6 +69,13 @@ class Loopback:
                 if route.calls <= route.fail_first:
                     return self._send(500, b"Internal Server Error\n", "text/plain")
                 data, status = route.body, route.status
+                if route.by_query is not None:
+                    name, bodies = route.by_query
+                    value = parse_qs(parts.query).get(name, [None])[0]
+                    if value not in bodies:
+                        return self._send(400, f"no recorded response for {name}={value}\n".encode(),
+                                          "text/plain")
+                    data = bodies[value]
                 rng = self.headers.get("Range")
                 if rng and status == 200 and rng.startswith("bytes="):
                     start, _, end = rng[6:].partition("-")

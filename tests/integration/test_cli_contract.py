@@ -69,3 +69,14 @@ def test_bad_toml_names_file_and_line(tmp_path):
     res = CliRunner().invoke(main, ["simulate", str(bad)])
     assert res.exit_code == 2
     assert "bad.toml:" in res.output and "length" in res.output
+
+
+def test_window_and_robust_ballast_are_registered_with_json():
+    commands = dict((" ".join(path), cmd) for path, cmd in _leaf_commands(main))
+    assert "window" in commands
+    for name, flags in (("window", {"--json", "--forecast", "--site", "--from", "--hours", "--plot", "--spec",
+                                    "--max-rail-wind", "--min-margin", "--min-rail-speed"}),
+                        ("ballast", {"--json", "--robust", "--spec", "--band", "--objective", "--samples",
+                                     "--check-samples"})):
+        opts = {o for p in commands[name].params if isinstance(p, click.Option) for o in p.opts}
+        assert flags <= opts, (name, flags - opts)

@@ -14,7 +14,7 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = str(ROOT / "examples/calisto/calisto.toml")
 HEAVY = ("scipy.interpolate", "pandas", "requests", "ssl", "matplotlib", "ironbark_opt.cli_motor",
          "ironbark_opt.cli_weather", "ironbark_opt.cli_aero", "ironbark_opt.cli_optimise",
-         "ironbark_opt.cli_analysis", "ironbark_opt.cli_ork", "panair")
+         "ironbark_opt.cli_analysis", "ironbark_opt.cli_ork", "ironbark_opt.cli_window", "panair")
 
 PROBE = """
 import json, sys
