@@ -28,10 +28,14 @@ from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_p
 @click.option("--ballast-x", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
               help="Plot apogee, drift, rail-exit speed, ballast and P(in band) against the hour (PNG/PDF/SVG).")
+@click.option("--card", "card_path", type=click.Path(dir_okay=False, writable=True),
+              help="Write the flight card (PDF/PNG/SVG) of one hour: --card-hour, else the first go hour.")
+@click.option("--card-hour", metavar="ISO", help="The hour of --card (a flown hour, ISO 8601 UTC).")
 @json_option
 @handle_errors
 def window_command(rocket, forecast, site, start, hours, step_hours, target, band, spec_path, samples, seed,
-                   max_rail_wind, min_margin, min_rail_speed, max_ballast, ballast_x, plot_path, as_json):
+                   max_rail_wind, min_margin, min_rail_speed, max_ballast, ballast_x, plot_path, card_path,
+                   card_hour, as_json):
     """Fly ROCKET through every forecast hour of a launch window: table, plot, go/no-go."""
     from ironbark_opt.analysis.window import WindowLimits, launch_window, plot_window
     from ironbark_opt.atmosphere.ncss import parse_iso
@@ -42,6 +46,10 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
     from ironbark_opt.vehicle import load_setup
 
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
+    from ironbark_opt.report.card import CARD_SUFFIXES
+    check_output_path(card_path, "--card", CARD_SUFFIXES)
+    if card_hour is not None and card_path is None:
+        raise click.UsageError("--card-hour needs --card FILE")
     if site is None:
         raise click.UsageError("window needs --site NAME (see 'ironbark weather sites')")
     where = get_site(site)
@@ -80,7 +88,20 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
                            progress=progress)
     if plot_path:
         atomic_write(plot_path, lambda tmp: plot_window(result, tmp))
-    emit(result.to_dict(), as_json, result.summary())
+    out = result.to_dict()
+    text = result.summary()
+    if card_path:
+        import matplotlib
+        matplotlib.use("Agg")
+        from ironbark_opt.analysis.window import window_card
+        from ironbark_opt.report.card import write_flight_card
+        card, row = window_card(setup, result, forecast, where, hour=card_hour, target=target, band=band,
+                                spec=spec, samples=samples, seed=seed, limits=limits,
+                                ballast_options={"mass_max": max_ballast, "ballast_x": ballast_x})
+        atomic_write(card_path, lambda tmp: write_flight_card(tmp, card))
+        out["flight_card"] = {"time_utc": row["time_utc"], **card.to_dict()}
+        text += f"\nflight card of {row['time_utc']}: {card_path}"
+    emit(out, as_json, text)
 
 
 COMMANDS = [window_command]

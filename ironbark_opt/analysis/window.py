@@ -144,8 +144,13 @@ def rail_exit_wind(setup, flight) -> float:
 
 
 def fly_hour(setup, *, target=None, band=None, spec=None, samples=200, seed=None, ballast_options=None,
-             limits: WindowLimits = WindowLimits()) -> dict:
-    """The numbers of one hour (``setup`` already flies that hour's atmosphere); numeric-only."""
+             limits: WindowLimits = WindowLimits(), objects: dict | None = None) -> dict:
+    """The numbers of one hour (``setup`` already flies that hour's atmosphere); numeric-only.
+
+    ``objects``, if given, receives what the numbers came from: ``flight``, ``parameters``
+    and, where flown, ``solution`` (the ballast) and ``dispersion`` (the Monte Carlo), so a
+    flight card of the hour prints the same numbers."""
+    objects = {} if objects is None else objects
     from ironbark_opt.flight import flight_model, simulate
 
     model = flight_model(setup, jit=False)
@@ -157,7 +162,9 @@ def fly_hour(setup, *, target=None, band=None, spec=None, samples=200, seed=None
         row.update(ballast_kg=sol.values["ballast_kg"], ballast_x_m=sol.values["ballast_x_m"],
                    ballast_feasible=sol.feasible, target_agl_m=sol.values["target_agl_m"])
         overrides = {"ballast_mass": sol.values["ballast_kg"], "ballast_x": sol.values["ballast_x_m"]}
+        objects["solution"] = sol
     flight = simulate(setup, parameters=overrides, descent=True, model=model)
+    objects.update(flight=flight, parameters=dict(overrides))
     s = flight.summary_values
     for key in ("apogee_agl_m", "apogee_time_s", "apogee_east_m", "apogee_north_m", "rail_exit_speed_mps",
                 "static_margin_rail_exit_cal", "static_margin_min_cal", "max_mach", "max_dynamic_pressure_Pa",
@@ -173,6 +180,7 @@ def fly_hour(setup, *, target=None, band=None, spec=None, samples=200, seed=None
         from ironbark_opt.analysis.montecarlo import montecarlo
         mc = montecarlo(setup, spec, samples, seed=seed, target=target, band=band if target is not None else None,
                         parameters=overrides, progress=False, jit=False, model=model, descent=True)
+        objects["dispersion"] = mc
         a = mc.stats["apogee_agl_m"]
         row.update(apogee_mean_agl_m=a["mean"], apogee_p05_agl_m=a["p05"], apogee_p95_agl_m=a["p95"],
                    monte_carlo_samples=int(samples), monte_carlo_seed=mc.seed,
@@ -322,3 +330,40 @@ def plot_window(window: LaunchWindow, filename=None):
         fig.savefig(filename, dpi=120)
         plt.close(fig)
     return fig
+
+
+def window_card(setup, window: LaunchWindow, forecast: str, site, *, hour: str | None = None, target=None,
+                band: float = 50.0, spec=None, samples: int = 200, seed: int | None = None,
+                limits: WindowLimits = WindowLimits(), ballast_options: Mapping | None = None):
+    """The :class:`~ironbark_opt.report.card.FlightCard` of one hour of ``window``: ``hour``
+    (its ``time_utc``), else the first go hour, else the first hour flown.  The hour is
+    flown again exactly as :func:`launch_window` flew it (the forecast comes from the
+    cache, the Monte Carlo has the same seed), so the card prints the window's numbers.
+    Returns ``(card, row)``; numeric-only."""
+    from ironbark_opt.atmosphere.forecast import setup_with_forecast
+    from ironbark_opt.atmosphere.ncss import parse_iso
+    from ironbark_opt.atmosphere.sites import get_site
+    from ironbark_opt.report.card import apogee_per_100g, build_card
+
+    flown = window.flown
+    if hour is not None:
+        want = parse_iso(hour).strftime("%Y-%m-%dT%H:%M:%SZ")
+        rows = [r for r in flown if r["time_utc"] == want]
+        if not rows:
+            raise InputError(f"{want} is not a flown hour of the window; flown: "
+                             + ", ".join(r["time_utc"] for r in flown), field="--card-hour")
+    else:
+        rows = [r for r in flown if r["go"]] or flown
+    row = rows[0]
+    where = get_site(site) if isinstance(site, str) else site
+    hour_setup, _ = setup_with_forecast(setup, forecast, parse_iso(row["time_utc"]), where)
+    if spec is not None and seed is None:
+        seed = row.get("monte_carlo_seed")
+    objects: dict = {}
+    fly_hour(hour_setup, target=target, band=band, spec=spec, samples=samples, seed=seed,
+             ballast_options=ballast_options, limits=limits, objects=objects)
+    card = build_card(hour_setup, objects["flight"], solution=objects.get("solution"),
+                      dispersion=objects.get("dispersion"),
+                      apogee_per_100g_m=apogee_per_100g(hour_setup, objects["parameters"]),
+                      launch_time=row["time_utc"], site_name=getattr(where, "name", str(site)))
+    return card, row

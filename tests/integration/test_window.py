@@ -64,9 +64,10 @@ def _window(*extra, hours=HOURS, first=0):
 
 def test_window_twelve_hours_table_plot_json(thredds, tmp_path, monkeypatch):
     plot = tmp_path / "window.png"
+    card = tmp_path / "card.png"
     res = CliRunner().invoke(main, _window("--target", "3000m", "--spec", SPEC, "--samples", "8",
                                            "--max-rail-wind", str(MAX_RAIL_WIND), "--min-margin", "1.0",
-                                           "--plot", str(plot), "--json"))
+                                           "--plot", str(plot), "--card", str(card), "--json"))
     assert res.exit_code == 0, res.output
     data = json.loads(res.output)
     hours = data["hours"]
@@ -91,6 +92,17 @@ def test_window_twelve_hours_table_plot_json(thredds, tmp_path, monkeypatch):
     # (weathercocking into the wind costs apogee), and the apogee drifts further downwind
     assert hours[-1]["ballast_kg"] < hours[0]["ballast_kg"]
     assert plot.stat().st_size > 20_000 and plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the flight card of the first go hour prints that hour's numbers (the same flight,
+    # ballast and Monte Carlo samples, flown again from the cached forecast)
+    assert card.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    fc = data["flight_card"]
+    first_go = next(h for h in hours if h["go"])
+    assert fc["time_utc"] == first_go["time_utc"]
+    for key in ("apogee_agl_m", "ballast_kg", "ballast_x_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal",
+                "static_margin_min_cal", "max_mach", "probability_in_band", "landing_distance_m"):
+        assert fc[key] == pytest.approx(first_go[key], rel=1e-9, abs=1e-9), key
+    assert fc["target_agl_m"] == pytest.approx(3000.0)
+    assert any(f"{fc['apogee_agl_m']:.1f}" in line for line in fc["lines"])
     # second run: offline, from the cache (no new request reaches the server)
     n_requests = len(thredds.requests)
     monkeypatch.setenv("IRONBARK_OFFLINE", "1")
