@@ -322,6 +322,14 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     if panels is not None:
         body_ids = [k for k, n in enumerate(nets) if n.name == "body"]
         body_mask = np.isin(panels.network, body_ids) & panels.integrate
+        # The body's critical Mach number is read from its own suction peak: leave out
+        # the fin-root strips, whose potential solution is singular at the fin-body
+        # corners (Cp -7 beside a square 2 mm fin root on a model rocket) and whose
+        # compressibility is the fins' own (Korn/Lock, panair.transonic.fin_critical_mach)
+        x_c = panels.corners[:, :, 0].mean(axis=1)
+        for f in geometry.fins:
+            pad = max(2.0 * f.thickness, 0.05 * f.root_chord)
+            body_mask &= ~((x_c > f.x_root - pad) & (x_c < f.x_root + f.root_chord + pad))
     jobs = [(panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
              xref, pressure_rule, None if m >= MACH_SUPERSONIC_MIN else body_mask)
             for m in builtin]

@@ -1,4 +1,6 @@
 """Sweeps to AeroTable, transonic bridge, Rocket adapter."""
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -268,3 +270,23 @@ def test_local_inclination_fallback_on_a_superinclined_cone():
     print(f"cone 35 deg, Mach 2: CA {c['CA'][0, 0]:.4f}, Taylor-Maccoll {exact:.4f}")
     assert c["CA"][0, 0] == pytest.approx(exact, rel=0.02)     # faceted mesh: 2 %
     assert c["CN"][0, 1] > 0
+
+
+def test_body_critical_mach_ignores_the_fin_root_corners():
+    """The body's minimum Cp (its critical Mach number, panair.transonic) comes from its
+    own suction peak, not the singular fin-body corners: on OpenRocket's 'A simple model
+    rocket' (2 mm square fins on a 25 mm tube) the corner panel beside the fin root reads
+    Cp = -7 (measured on the default mesh), which made the drag rise start at Mach 0.27.
+    A smooth ogive body's suction peak is a few tenths (PANAIR's ogive-cylinder: about -0.1)."""
+    from ironbark_opt.openrocket import read_ork
+    from ironbark_opt.openrocket.build import geometry
+    from panair.geometry_adapter import from_rocket, is_symmetric
+    from panair.transonic import body_critical_mach
+    rk = geometry(read_ork(Path(__file__).parents[1] / "data" / "ork" / "A simple model rocket.ork"))
+    geom = from_rocket(rk)
+    _, info = sweep_pressure(geom, [0.05], [0.0], sref=rk.reference_area(), lref=0.025, xref=0.0,
+                             symmetric=is_symmetric(geom), workers=1, progress=False)      # default mesh
+    cp0 = info["body_cp_min_incompressible"]
+    print(f"body Cp_min (incompressible) {cp0:.3f}, critical Mach {body_critical_mach(cp0):.3f}")
+    assert -1.0 < cp0 < 0.0
+    assert body_critical_mach(cp0) > 0.6
