@@ -84,13 +84,32 @@ def grid_fractions(n_steps: int, grading: float = 1.0) -> np.ndarray:
     return grading * s + (1.0 - grading) * s * s
 
 
-def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float = 1.0) -> ca.Function:
+def padded_grid(n_steps: int, capacity: int, grading: float = 1.0) -> np.ndarray:
+    """The grid of :func:`grid_fractions` as ``phase_trajectory(..., grid_offset=)``
+    reads it from ``p``: ``capacity`` step starts then ``capacity`` step lengths,
+    the steps after the ``n_steps``-th of length 0 (at the phase's end)."""
+    if n_steps > capacity:
+        raise ValueError(f"{n_steps} steps do not fit a grid of {capacity}")
+    fr = grid_fractions(n_steps, grading)
+    starts = np.full(capacity, fr[-1])
+    lengths = np.zeros(capacity)
+    starts[:n_steps], lengths[:n_steps] = fr[:-1], np.diff(fr)
+    return np.concatenate([starts, lengths])
+
+
+def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float = 1.0,
+                     grid_offset: int | None = None) -> ca.Function:
     """``(x0, t0, t1, p) -> X`` with X (nx x n_steps) the states after each step.
 
     ``n_steps`` RK4 steps over ``[t0, t1]`` on the grid of
     :func:`grid_fractions` (uniform for ``grading = 1``), built with
     ``Function.mapaccum`` (one call node, linear memory, fast VM).  The final
     time is an input, so events and optimisers can move it.
+
+    ``grid_offset``: the grid is read from ``p`` instead, step starts
+    ``p[o:o+n]`` and lengths ``p[o+n:o+2n]`` as fractions of the phase
+    (:func:`padded_grid`); steps of length 0 leave the state exactly as it is,
+    so one Function flies any grid of up to ``n_steps`` steps.
     """
     nx = step.size1_in(0)
     np_ = step.size1_in(3)
@@ -102,14 +121,18 @@ def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float 
     p = ca.SX.sym("p", np_)
     body = ca.Function(f"{name}_body", [x, f0, df, t0, span, p], [step(x, t0 + span * f0, span * df, p)])
     acc = body.mapaccum(f"{name}_acc", n_steps)
-    fr = grid_fractions(n_steps, grading)
     x0 = ca.MX.sym("x0", nx)
     t0m = ca.MX.sym("t0")
     t1m = ca.MX.sym("t1")
     pm = ca.MX.sym("p", np_)
     rep = ca.repmat
-    states = acc(x0, ca.DM(fr[:-1]).T, ca.DM(np.diff(fr)).T, rep(t0m, 1, n_steps), rep(t1m - t0m, 1, n_steps),
-                 rep(pm, 1, n_steps))
+    if grid_offset is None:
+        fr = grid_fractions(n_steps, grading)
+        starts, lengths = ca.DM(fr[:-1]).T, ca.DM(np.diff(fr)).T
+    else:
+        starts = pm[grid_offset:grid_offset + n_steps].T
+        lengths = pm[grid_offset + n_steps:grid_offset + 2 * n_steps].T
+    states = acc(x0, starts, lengths, rep(t0m, 1, n_steps), rep(t1m - t0m, 1, n_steps), rep(pm, 1, n_steps))
     return ca.Function(name, [x0, t0m, t1m, pm], [states], ["x0", "t0", "t1", "p"], ["X"])
 
 
@@ -155,7 +178,7 @@ def _compiler() -> str | None:
 
 
 def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: str | None = None,
-                     background: bool = False) -> ca.Function:
+                     background: bool = False, extra: tuple = ()) -> ca.Function:
     """C-compiled copy of ``func`` loaded with ``casadi.external``.
 
     Without ``key`` the generated C source is hashed (SHA-256) and the shared
@@ -169,6 +192,11 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
     detached process (it outlives this one and renames its output into place
     atomically) and return ``func`` itself, the VM, meanwhile.  Falls back to
     ``func`` when no compiler exists or compiling fails.
+
+    ``extra``: more Functions generated into the same library, e.g. the Jacobian
+    named ``jac_<name>`` that ``casadi.external`` finds, so a solver
+    differentiating the loaded function runs compiled derivatives too (the
+    ballast NLP).
     """
     cc = _compiler()
     if cc is None:
@@ -183,6 +211,8 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
         cname = f"{func.name()}.c"
         gen = ca.CodeGenerator(cname, {"with_header": False})
         gen.add(func)
+        for f in extra:
+            gen.add(f)
         src_path = Path(tmp) / cname
         gen.generate(str(Path(tmp)) + os.sep)
         if key is None:
