@@ -177,8 +177,17 @@ def _compiler() -> str | None:
     return None
 
 
+def cached_library(name: str, key: str, cache_dir: Path | None = None) -> ca.Function | None:
+    """The compiled Function ``name`` stored under ``key`` by :func:`compile_function`,
+    or None (not compiled yet, or no C compiler to have made it)."""
+    lib = (Path(cache_dir) if cache_dir else default_cache_dir()) / f"{name}_{key}.so"
+    if _compiler() is None or not lib.exists():
+        return None
+    return ca.external(name, str(lib))
+
+
 def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: str | None = None,
-                     background: bool = False, extra: tuple = ()) -> ca.Function:
+                     background: bool = False, extra=None) -> ca.Function:
     """C-compiled copy of ``func`` loaded with ``casadi.external``.
 
     Without ``key`` the generated C source is hashed (SHA-256) and the shared
@@ -193,7 +202,8 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
     atomically) and return ``func`` itself, the VM, meanwhile.  Falls back to
     ``func`` when no compiler exists or compiling fails.
 
-    ``extra``: more Functions generated into the same library, e.g. the Jacobian
+    ``extra``: a callable returning more Functions generated into the same
+    library (called only when code is generated), e.g. the Jacobian
     named ``jac_<name>`` that ``casadi.external`` finds, so a solver
     differentiating the loaded function runs compiled derivatives too (the
     ballast NLP).
@@ -203,15 +213,16 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
         return func
     cache = Path(cache_dir) if cache_dir else default_cache_dir()
     if key is not None:
+        found = cached_library(func.name(), key, cache)
+        if found is not None:
+            return found
         lib = cache / f"{func.name()}_{key}.so"
-        if lib.exists():
-            return ca.external(func.name(), str(lib))
     cache.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         cname = f"{func.name()}.c"
         gen = ca.CodeGenerator(cname, {"with_header": False})
         gen.add(func)
-        for f in extra:
+        for f in (extra() if extra is not None else ()):
             gen.add(f)
         src_path = Path(tmp) / cname
         gen.generate(str(Path(tmp)) + os.sep)

@@ -30,7 +30,7 @@ import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
-from ironbark_opt.dynamics.integrator import compile_function
+from ironbark_opt.dynamics.integrator import cached_library, compile_function
 from ironbark_opt.dynamics.model import _final_state
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import InputError
@@ -253,6 +253,34 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
     cache = model.__dict__.setdefault("_nlp_cache", {})
     if key in cache:
         return cache[key]
+    rail_variable = not hasattr(type(model), "final_state_symbolic")
+    name = f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
+    key_c = None if model._key is None else \
+        hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
+    names = [n for n, on in (("rail_exit_speed_mps >= minimum", rail_speed),
+                             ("static_margin_rail_exit_cal >= minimum", margin)) if on]
+    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+            "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-10,
+            "ipopt.constr_viol_tol": 1e-6, "ipopt.max_iter": 100}
+    opts.update({(k if k.startswith("ipopt.") else f"ipopt.{k}"): v for k, v in ipopt_options.items()})
+    compiled = cached_library(name, key_c) if model.jit and rail_variable and key_c is not None else None
+    if compiled is not None:        # no graph to build: the closest-apogee NLP builds its own if ever needed
+        cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", compiled, opts), "names": names,
+                      "equalities": 3, "rail_variable": True,        # rail residual, v_z(T) = 0, z(T) = target
+                      "closest": lambda **kw: _nlp_graph(model, free_position, rail_speed, margin)[1](opts)(**kw)}
+        return cache[key]
+    oracle, closest, n_eq = _nlp_graph(model, free_position, rail_speed, margin)
+    if model.jit and rail_variable:
+        oracle = compile_function(oracle, key=key_c, background=model.jit == "auto",
+                                  extra=lambda: (_jacobian_in_x(oracle),))
+    cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", oracle, opts), "names": names, "equalities": n_eq,
+                  "rail_variable": rail_variable, "closest": lambda **kw: closest(opts)(**kw)}
+    return cache[key]
+
+
+def _nlp_graph(model, free_position: bool, rail_speed: bool, margin: bool):
+    """(NLP Function ``(x, p) -> (f, g)``, closest-apogee solver factory ``opts -> nlpsol``,
+    number of equality constraints) of :func:`_nlp`."""
     i_m, i_x = params.index("ballast_mass"), params.index("ballast_x")
     n_p = model.n_p
     par = ca.MX.sym("par", n_p + 3)
@@ -266,41 +294,27 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
     x_T, t_r, x_r, _ = _final_state(model, p_sym, T_sym, t_rail_guess, t_rail=tr_sym if rail_variable else None)
     g = ([model.rail_residual(t_r, p_sym)] if rail_variable else []) + [model.vz_l(x_T), x_T[2] - target_agl]
     n_eq = len(g)
-    names = []
     if rail_speed:
         g.append(ca.norm_2(x_r[3:6]))
-        names.append("rail_exit_speed_mps >= minimum")
     if margin:
         g.append(model.rhs["boost"](x_r, t_r, p_sym)[1][_SM])
-        names.append("static_margin_rail_exit_cal >= minimum")
     W = ca.vertcat(*w)
-    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-            "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-10,
-            "ipopt.constr_viol_tol": 1e-6, "ipopt.max_iter": 100}
-    opts.update({(k if k.startswith("ipopt.") else f"ipopt.{k}"): v for k, v in ipopt_options.items()})
     name = f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
-    f, G = m_sym / m_max, ca.vertcat(*g)
-    oracle = ca.Function(name, [W, par], [f, G], ["x", "p"], ["f", "g"])
-    if model.jit and rail_variable:
-        key_c = None if model._key is None else \
-            hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
-        oracle = compile_function(oracle, key=key_c, background=model.jit == "auto",
-                                  extra=(_jacobian_in_x(name, W, par, f, G),))
+    oracle = ca.Function(name, [W, par], [m_sym / m_max, ca.vertcat(*g)], ["x", "p"], ["f", "g"])
     closest = {"x": W, "p": par, "f": ((x_T[2] - target_agl) / 100.0) ** 2, "g": ca.vertcat(*g[:n_eq - 1], *g[n_eq:])}
-    cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", oracle, opts), "names": names, "equalities": n_eq,
-                  "rail_variable": rail_variable,
-                  "closest": lambda **kw: ca.nlpsol("ballast_closest", "ipopt", closest, opts)(**kw)}
-    return cache[key]
+    return oracle, (lambda opts: ca.nlpsol("ballast_closest", "ipopt", closest, opts)), n_eq
 
 
-def _jacobian_in_x(name: str, W, par, f, G) -> ca.Function:
-    """``jac_<name>``, the Jacobian of the NLP functions as ``casadi.external`` looks
+def _jacobian_in_x(oracle: ca.Function) -> ca.Function:
+    """``jac_<name>``, the Jacobian of the NLP Function as ``casadi.external`` looks
     it up, with respect to the variables only: the blocks for the parameters (the
     whole parameter vector, ~1500 entries with a motor slot) are structurally
     zero, since IPOPT never differentiates with respect to parameters; computing
     them would cost a reverse sweep per output on every call."""
+    W, par = (ca.MX.sym(n, oracle.sparsity_in(i)) for i, n in enumerate(("x", "p")))
+    f, G = oracle(W, par)
     out_f, out_g = ca.MX.sym("out_f", ca.Sparsity(*f.shape)), ca.MX.sym("out_g", ca.Sparsity(*G.shape))
-    return ca.Function(f"jac_{name}", [W, par, out_f, out_g],
+    return ca.Function(f"jac_{oracle.name()}", [W, par, out_f, out_g],
                        [ca.jacobian(f, W), ca.MX(f.numel(), par.numel()), ca.jacobian(G, W),
                         ca.MX(G.numel(), par.numel())],
                        ["x", "p", "out_f", "out_g"], ["jac_f_x", "jac_f_p", "jac_g_x", "jac_g_p"])
