@@ -259,10 +259,7 @@ class FlightModel:
         """
         span = float(t_end - t_b)
         n_uni = max(self.steps.n_coast, int(math.ceil(span / self.stable_step(self.rhs["coast"], x_b, t_b, p))))
-        probes = self.__dict__.setdefault("_probe_cache", {})   # a motor-slot model probes every candidate
-        if n_uni not in probes:
-            probes[n_uni] = phase_trajectory(self.step["coast"], n_uni, "traj_coast_probe")
-        X = np.array(probes[n_uni](x_b, t_b, t_end, p))
+        X = self._coast_probe(x_b, t_b, t_end, p, n_uni)
         vz = np.array(self._mapped("vz", n_uni)(X)).ravel()
         k_top = int(np.argmax(vz <= 0)) if np.any(vz <= 0) else n_uni
         idx = np.unique(np.linspace(0, max(k_top, 1), 30).astype(int))
@@ -278,6 +275,10 @@ class FlightModel:
             if best is None or n < best[0]:
                 best = (n, a)
         return best
+
+    def _coast_probe(self, x_b, t_b, t_end, p, n: int) -> np.ndarray:
+        """States after each of ``n`` uniform coast steps from burnout (grid choice only)."""
+        return np.array(phase_trajectory(self.step["coast"], n, "traj_coast_probe")(x_b, t_b, t_end, p))
 
     def _ensure_stable(self, x_b, t_b, t_end, P):
         """Refine the boost step if burnout (the stiffest point) needs it and

@@ -96,6 +96,15 @@ class SlotFlightModel(FlightModel):
         return grid[0] < self.cap_boost and grid[1] < self.cap_coast
 
     # ------------------------------------------------------------ FlightModel hooks
+    def _coast_probe(self, x_b, t_b, t_end, p, n: int) -> np.ndarray:
+        """The uniform probe of the grid choice on the slot's own (compiled) coast,
+        its grid set in ``p``: the same steps, no new Function per candidate."""
+        if n >= self.cap_coast:
+            return super()._coast_probe(x_b, t_b, t_end, p, n)
+        q = np.array(p, dtype=float)
+        q[self.o_coast:] = padded_grid(n, self.cap_coast)
+        return np.array(self._run["coast"](x_b, t_b, t_end, q))[:, :n]
+
     def _set_trajectory(self, phase: str, n: int):
         """The grids live in ``p``: nothing to rebuild (``_choose_grid`` only records ``n``)."""
 
