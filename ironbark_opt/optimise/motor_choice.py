@@ -1,10 +1,18 @@
 """Motor choice: solve the ballast problem for every candidate motor and rank them.
 
+Every tabulated solid motor flies in a *motor slot*
+(:mod:`ironbark_opt.motors.slot`, :mod:`ironbark_opt.dynamics.slot_model`):
+its thrust curve, mass model and RK4 grid are numbers in the parameter
+vector, so one flight model and one ballast NLP (compiled once per rocket,
+cached on disk) serve every candidate, each on the grid its own model would
+choose — the same ballast as a solve on the motor's own model.  Other motors
+(grain geometry, composite air-start motors) and explicit ``processes`` /
+``executor`` requests take one model per motor.
+
 Why enumeration and not a mixed-integer NLP (CasADi's ``bonmin``): a team
-chooses among a handful to a few dozen motors, each solve takes about a
-second, the candidates are independent (so they run in parallel processes),
-and every candidate gets its own exact, verified answer — including the
-infeasible ones, with the reason.  A relaxed formulation would have to blend
+chooses among a handful to a few dozen motors, the candidates are
+independent, and every candidate gets its own exact, verified answer —
+including the infeasible ones, with the reason.  A relaxed formulation would have to blend
 thrust curves (a blend of two motors is no motor), and branch-and-bound on
 one binary per motor does strictly more work than solving each candidate
 once.  Enumeration is exact and simpler; ``bonmin`` pays off only when the
@@ -276,8 +284,10 @@ def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least
     objective : {'least_ballast', 'largest_margin', 'closest_apogee'}
         Order among feasible candidates (infeasible ones follow, closest first).
     processes : int, optional
-        Worker processes (default: up to the CPU count; 1 runs in this process).
-        Parallel runs rebuild the setup from ``setup.source`` in each worker.
+        Default (None) or 1: slotted candidates in this process (one model, one
+        NLP); the remaining ones in up to the CPU count of worker processes
+        (None) or here (1).  N > 1: every candidate in N workers, one model per
+        motor (each worker rebuilds the setup from ``setup.source``).
     load_kwargs : mapping, optional
         Keyword arguments ``load_setup`` used for ``setup`` (rail_exit, ...).
     executor : None, "local", "local:N", "dask://HOST:PORT", distributed.Client or Executor
