@@ -486,12 +486,23 @@ class FlightModel:
     def _batch_function(self, phase: str) -> ca.Function:
         """The phase trajectory returning only what :meth:`run_batch` reads (fewer
         numbers to convert): rail -> (positions, final state), boost -> final state,
-        coast -> (states, vertical velocities)."""
+        coast -> (vertical velocities, the state before the first step ending at
+        v_z <= 0 (the start state if it is the first; zeros if none)).
+
+        The coast's state is picked inside the Function by a one-hot weight (the
+        first column where the running count of ``v_z <= 0`` steps is 1): one
+        column times 1 plus zeros is that column exactly, and 13 numbers per
+        sample are converted instead of 13 x n_coast."""
         x0, t0, t1 = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("t1")
         p = ca.MX.sym("p", self.n_p)
         X = self._run[phase](x0, t0, t1, p)
-        outs = {"rail": [X[0:3, :], X[:, -1]], "boost": [X[:, -1]],
-                "coast": [X, self.vz_l.map(X.size2())(X)]}[phase]
+        if phase == "coast":
+            vz = self.vz_l.map(X.size2())(X)
+            below = vz <= 0
+            first = below * (ca.cumsum(below, 1) == 1)                 # one-hot row (1 x n)
+            x_before = ca.mtimes(X[:, :-1], first[:, 1:].T) + x0 * first[:, 0]
+            return ca.Function(f"{phase}_batch", [x0, t0, t1, p], [vz, x_before])
+        outs = {"rail": [X[0:3, :], X[:, -1]], "boost": [X[:, -1]]}[phase]
         return ca.Function(f"{phase}_batch", [x0, t0, t1, p], outs)
 
     def _mapped(self, key, n):
@@ -570,8 +581,8 @@ class FlightModel:
         vz_b = np.array(self._mapped("vz", n)(x_b)).ravel()
         t_end = burn + vz_b / G0 + 2.0
         nc = self.n_coast
-        Xc, vz = self._mapped("coast:batch", n)(x_b, burn[None, :], t_end[None, :], P)
-        Xc, vz = np.array(Xc).reshape(13, n, nc), np.array(vz).reshape(n, nc)
+        vz, x_k = self._mapped("coast:batch", n)(x_b, burn[None, :], t_end[None, :], P)
+        vz, x_k = np.array(vz).reshape(n, nc), np.array(x_k)
         below = vz <= 0
         if not np.all(below.any(axis=1)):
             raise SolverError("apogee not reached within the coast horizon for some samples")
@@ -579,7 +590,6 @@ class FlightModel:
         fr = self.coast_fractions_of(P[:, 0])
         span = t_end - burn
         dtc = span * (fr[kc + 1] - fr[kc])
-        x_k = np.where(kc[None, :] == 0, x_b, Xc[:, idx, np.maximum(kc - 1, 0)])
         t_k = burn + span * fr[kc]
         vz_k = np.where(kc == 0, vz_b, vz[idx, np.maximum(kc - 1, 0)])
         vz_end = vz[idx, kc]
