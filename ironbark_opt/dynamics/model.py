@@ -795,7 +795,7 @@ def apogee_functions(model: FlightModel, p_nominal) -> dict:
     _refuse_controller(model.setup)
     run = model.run(p_nominal)
     t_rail0, t_apogee0 = run["t_rail"], run["t_apogee"]
-    p = ca.MX.sym("p", self.n_p)
+    p = ca.MX.sym("p", model.n_p)
     T = ca.MX.sym("T")
     x_t, t_r, x_r, X_b = _final_state(model, p, T, t_rail0)
     v_max = ca.mmax(ca.sqrt(ca.sum1(X_b[3:6, :] ** 2)))
