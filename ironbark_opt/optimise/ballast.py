@@ -255,22 +255,23 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
         return cache[key]
     rail_variable = not hasattr(type(model), "final_state_symbolic")
     name = f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
-    key_c = None if model._key is None else \
-        hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
+    key_c = None
+    if rail_variable and model._key is not None:
+        key_c = hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
     names = [n for n, on in (("rail_exit_speed_mps >= minimum", rail_speed),
                              ("static_margin_rail_exit_cal >= minimum", margin)) if on]
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
             "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-10,
             "ipopt.constr_viol_tol": 1e-6, "ipopt.max_iter": 100}
     opts.update({(k if k.startswith("ipopt.") else f"ipopt.{k}"): v for k, v in ipopt_options.items()})
-    compiled = cached_library(name, key_c) if model.jit and rail_variable and key_c is not None else None
+    compiled = cached_library(name, key_c) if key_c is not None and model.jit else None
     if compiled is not None:        # no graph to build: the closest-apogee NLP builds its own if ever needed
         cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", compiled, opts), "names": names,
                       "equalities": 3, "rail_variable": True,        # rail residual, v_z(T) = 0, z(T) = target
                       "closest": lambda **kw: _nlp_graph(model, free_position, rail_speed, margin)[1](opts)(**kw)}
         return cache[key]
     oracle, closest, n_eq = _nlp_graph(model, free_position, rail_speed, margin)
-    if model.jit and rail_variable:
+    if rail_variable and model.jit:
         oracle = compile_function(oracle, key=key_c, background=model.jit == "auto",
                                   extra=lambda: (_jacobian_in_x(oracle),))
     cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", oracle, opts), "names": names, "equalities": n_eq,
