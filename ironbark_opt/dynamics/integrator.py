@@ -118,8 +118,13 @@ def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float 
     df = ca.SX.sym("df")
     t0 = ca.SX.sym("t0")
     span = ca.SX.sym("span")
-    p = ca.SX.sym("p", np_)
-    body = ca.Function(f"{name}_body", [x, f0, df, t0, span, p], [step(x, t0 + span * f0, span * df, p)])
+    if grid_offset is None:
+        p = ca.SX.sym("p", np_)
+        p_step = p
+    else:                   # the grid entries of p are not the step's: not copied to every step
+        p = ca.SX.sym("p", grid_offset)
+        p_step = ca.vertcat(p, ca.SX.zeros(np_ - grid_offset))
+    body = ca.Function(f"{name}_body", [x, f0, df, t0, span, p], [step(x, t0 + span * f0, span * df, p_step)])
     acc = body.mapaccum(f"{name}_acc", n_steps)
     x0 = ca.MX.sym("x0", nx)
     t0m = ca.MX.sym("t0")
@@ -132,7 +137,8 @@ def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float 
     else:
         starts = pm[grid_offset:grid_offset + n_steps].T
         lengths = pm[grid_offset + n_steps:grid_offset + 2 * n_steps].T
-    states = acc(x0, starts, lengths, rep(t0m, 1, n_steps), rep(t1m - t0m, 1, n_steps), rep(pm, 1, n_steps))
+    p_body = pm if grid_offset is None else pm[:grid_offset]
+    states = acc(x0, starts, lengths, rep(t0m, 1, n_steps), rep(t1m - t0m, 1, n_steps), rep(p_body, 1, n_steps))
     return ca.Function(name, [x0, t0m, t1m, pm], [states], ["x0", "t0", "t1", "p"], ["X"])
 
 

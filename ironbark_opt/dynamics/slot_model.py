@@ -22,7 +22,7 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics import model_cache
 from ironbark_opt.dynamics import rhs as rhs_mod
-from ironbark_opt.dynamics.integrator import jit_mode, padded_grid, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.integrator import grid_fractions, jit_mode, padded_grid, phase_trajectory, rk4_step
 from ironbark_opt.dynamics.model import FlightModel, Steps, initial_boost_steps
 from ironbark_opt.motors.slot import MotorSlot
 
@@ -99,11 +99,17 @@ class SlotFlightModel(FlightModel):
     def _coast_probe(self, x_b, t_b, t_end, p, n: int) -> np.ndarray:
         """The uniform probe of the grid choice on the slot's own (compiled) coast,
         its grid set in ``p``: the same steps, no new Function per candidate."""
-        if n >= self.cap_coast:
-            return super()._coast_probe(x_b, t_b, t_end, p, n)
-        q = np.array(p, dtype=float)
-        q[self.o_coast:] = padded_grid(n, self.cap_coast)
-        return np.array(self._run["coast"](x_b, t_b, t_end, q))[:, :n]
+        fr = grid_fractions(n)
+        starts, lengths = fr[:-1], np.diff(fr)
+        q, cap, o = np.array(p, dtype=float), self.cap_coast, self.o_coast
+        cols, x = [], x_b
+        for j in range(0, n, cap):      # longer probes in pieces: the same t0 + span * f0 and span * df
+            st, ln = starts[j:j + cap], lengths[j:j + cap]
+            q[o:o + cap] = np.r_[st, np.full(cap - st.size, 1.0)]
+            q[o + cap:o + 2 * cap] = np.r_[ln, np.zeros(cap - st.size)]
+            cols.append(np.array(self._run["coast"](x, t_b, t_end, q))[:, :st.size])
+            x = cols[-1][:, -1]
+        return np.hstack(cols)
 
     def _set_trajectory(self, phase: str, n: int):
         """The grids live in ``p``: nothing to rebuild (``_choose_grid`` only records ``n``)."""
