@@ -30,7 +30,7 @@ import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
-from ironbark_opt.dynamics.integrator import cached_library, compile_function
+from ironbark_opt.dynamics.integrator import cached_library, compile_detached, compile_function
 from ironbark_opt.dynamics.model import _final_state
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import InputError
@@ -271,9 +271,11 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
                       "closest": lambda **kw: _nlp_graph(model, free_position, rail_speed, margin)[1](opts)(**kw)}
         return cache[key]
     oracle, closest, n_eq = _nlp_graph(model, free_position, rail_speed, margin)
-    if rail_variable and model.jit:
-        oracle = compile_function(oracle, key=key_c, background=model.jit == "auto",
-                                  extra=lambda: (_jacobian_in_x(oracle),))
+    if rail_variable and model.jit == "auto" and key_c is not None:
+        # generated and compiled in a detached process: a first run costs no more than the VM
+        compile_detached(oracle, key_c, "ironbark_opt.optimise.ballast:_jacobian_in_x")
+    elif rail_variable and model.jit:
+        oracle = compile_function(oracle, key=key_c, extra=lambda: (_jacobian_in_x(oracle),))
     cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", oracle, opts), "names": names, "equalities": n_eq,
                   "rail_variable": rail_variable, "closest": lambda **kw: closest(opts)(**kw)}
     return cache[key]
