@@ -278,5 +278,6 @@ def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
         run = model.run(p, descent=descent)
     df = _table(model, run)
     _warn_outside_table(setup, df)
-    return Flight(name=setup.name, parameters=params_mod.to_dict(p), summary_values=_summary(model, run, df),
+    return Flight(name=setup.name, parameters=params_mod.to_dict(p[:params_mod.SIZE]),
+                  summary_values=_summary(model, run, df),
                   _columns=df)

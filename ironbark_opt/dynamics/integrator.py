@@ -84,13 +84,32 @@ def grid_fractions(n_steps: int, grading: float = 1.0) -> np.ndarray:
     return grading * s + (1.0 - grading) * s * s
 
 
-def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float = 1.0) -> ca.Function:
+def padded_grid(n_steps: int, capacity: int, grading: float = 1.0) -> np.ndarray:
+    """The grid of :func:`grid_fractions` as ``phase_trajectory(..., grid_offset=)``
+    reads it from ``p``: ``capacity`` step starts then ``capacity`` step lengths,
+    the steps after the ``n_steps``-th of length 0 (at the phase's end)."""
+    if n_steps > capacity:
+        raise ValueError(f"{n_steps} steps do not fit a grid of {capacity}")
+    fr = grid_fractions(n_steps, grading)
+    starts = np.full(capacity, fr[-1])
+    lengths = np.zeros(capacity)
+    starts[:n_steps], lengths[:n_steps] = fr[:-1], np.diff(fr)
+    return np.concatenate([starts, lengths])
+
+
+def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float = 1.0,
+                     grid_offset: int | None = None) -> ca.Function:
     """``(x0, t0, t1, p) -> X`` with X (nx x n_steps) the states after each step.
 
     ``n_steps`` RK4 steps over ``[t0, t1]`` on the grid of
     :func:`grid_fractions` (uniform for ``grading = 1``), built with
     ``Function.mapaccum`` (one call node, linear memory, fast VM).  The final
     time is an input, so events and optimisers can move it.
+
+    ``grid_offset``: the grid is read from ``p`` instead, step starts
+    ``p[o:o+n]`` and lengths ``p[o+n:o+2n]`` as fractions of the phase
+    (:func:`padded_grid`); steps of length 0 leave the state exactly as it is,
+    so one Function flies any grid of up to ``n_steps`` steps.
     """
     nx = step.size1_in(0)
     np_ = step.size1_in(3)
@@ -99,17 +118,27 @@ def phase_trajectory(step: ca.Function, n_steps: int, name: str, grading: float 
     df = ca.SX.sym("df")
     t0 = ca.SX.sym("t0")
     span = ca.SX.sym("span")
-    p = ca.SX.sym("p", np_)
-    body = ca.Function(f"{name}_body", [x, f0, df, t0, span, p], [step(x, t0 + span * f0, span * df, p)])
+    if grid_offset is None:
+        p = ca.SX.sym("p", np_)
+        p_step = p
+    else:                   # the grid entries of p are not the step's: not copied to every step
+        p = ca.SX.sym("p", grid_offset)
+        p_step = ca.vertcat(p, ca.SX.zeros(np_ - grid_offset))
+    body = ca.Function(f"{name}_body", [x, f0, df, t0, span, p], [step(x, t0 + span * f0, span * df, p_step)])
     acc = body.mapaccum(f"{name}_acc", n_steps)
-    fr = grid_fractions(n_steps, grading)
     x0 = ca.MX.sym("x0", nx)
     t0m = ca.MX.sym("t0")
     t1m = ca.MX.sym("t1")
     pm = ca.MX.sym("p", np_)
     rep = ca.repmat
-    states = acc(x0, ca.DM(fr[:-1]).T, ca.DM(np.diff(fr)).T, rep(t0m, 1, n_steps), rep(t1m - t0m, 1, n_steps),
-                 rep(pm, 1, n_steps))
+    if grid_offset is None:
+        fr = grid_fractions(n_steps, grading)
+        starts, lengths = ca.DM(fr[:-1]).T, ca.DM(np.diff(fr)).T
+    else:
+        starts = pm[grid_offset:grid_offset + n_steps].T
+        lengths = pm[grid_offset + n_steps:grid_offset + 2 * n_steps].T
+    p_body = pm if grid_offset is None else pm[:grid_offset]
+    states = acc(x0, starts, lengths, rep(t0m, 1, n_steps), rep(t1m - t0m, 1, n_steps), rep(p_body, 1, n_steps))
     return ca.Function(name, [x0, t0m, t1m, pm], [states], ["x0", "t0", "t1", "p"], ["X"])
 
 
@@ -154,8 +183,17 @@ def _compiler() -> str | None:
     return None
 
 
+def cached_library(name: str, key: str, cache_dir: Path | None = None) -> ca.Function | None:
+    """The compiled Function ``name`` stored under ``key`` by :func:`compile_function`,
+    or None (not compiled yet, or no C compiler to have made it)."""
+    lib = (Path(cache_dir) if cache_dir else default_cache_dir()) / f"{name}_{key}.so"
+    if _compiler() is None or not lib.exists():
+        return None
+    return ca.external(name, str(lib))
+
+
 def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: str | None = None,
-                     background: bool = False) -> ca.Function:
+                     background: bool = False, extra=None) -> ca.Function:
     """C-compiled copy of ``func`` loaded with ``casadi.external``.
 
     Without ``key`` the generated C source is hashed (SHA-256) and the shared
@@ -169,20 +207,29 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
     detached process (it outlives this one and renames its output into place
     atomically) and return ``func`` itself, the VM, meanwhile.  Falls back to
     ``func`` when no compiler exists or compiling fails.
+
+    ``extra``: a callable returning more Functions generated into the same
+    library (called only when code is generated), e.g. the Jacobian
+    named ``jac_<name>`` that ``casadi.external`` finds, so a solver
+    differentiating the loaded function runs compiled derivatives too (the
+    ballast NLP).
     """
     cc = _compiler()
     if cc is None:
         return func
     cache = Path(cache_dir) if cache_dir else default_cache_dir()
     if key is not None:
+        found = cached_library(func.name(), key, cache)
+        if found is not None:
+            return found
         lib = cache / f"{func.name()}_{key}.so"
-        if lib.exists():
-            return ca.external(func.name(), str(lib))
     cache.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         cname = f"{func.name()}.c"
         gen = ca.CodeGenerator(cname, {"with_header": False})
         gen.add(func)
+        for f in (extra() if extra is not None else ()):
+            gen.add(f)
         src_path = Path(tmp) / cname
         gen.generate(str(Path(tmp)) + os.sep)
         if key is None:
@@ -227,3 +274,55 @@ def _compile_detached(cc: str, src: Path, lib: Path) -> None:
                          start_new_session=True, close_fds=True)
     except OSError:
         pending.unlink(missing_ok=True)
+
+
+def compile_detached(func: ca.Function, key: str, extra: str | None = None) -> None:
+    """Generate and compile ``func`` (as :func:`compile_function` with ``key``) in a
+    detached, low-priority Python process, so this process pays only for saving the
+    Function, not for generating its C code (the ballast NLP: ~0.5 s).
+
+    ``extra``: ``"module:function"``, called there with ``func`` to give the
+    Function(s) generated into the same library (e.g. its Jacobian).  At most one
+    such compile per library runs; a missing compiler or a failure only means the
+    VM stays in use.
+    """
+    import sys
+    import time
+    if _compiler() is None:
+        return
+    cache = default_cache_dir()
+    lib = cache / f"{func.name()}_{key}.so"
+    pending = lib.with_name(f".{lib.stem}.c")          # the marker background compiles leave (benchmarks wait)
+    try:
+        cache.mkdir(parents=True, exist_ok=True)
+        if lib.exists() or (pending.exists() and time.time() - pending.stat().st_mtime < _PENDING_S):
+            return
+        saved = lib.with_name(f".{lib.stem}.casadi")
+        func.save(str(saved))
+        pending.write_text("pending\n")
+    except OSError:
+        return
+    script = ("import sys, importlib, casadi as ca\n"
+              "from ironbark_opt.dynamics.integrator import compile_function\n"
+              "f = ca.Function.load(sys.argv[1])\n"
+              "extra = None\n"
+              "if sys.argv[3]:\n"
+              "    mod, name = sys.argv[3].split(':')\n"
+              "    build = getattr(importlib.import_module(mod), name)\n"
+              "    extra = lambda: (build(f),)\n"
+              "try:\n"
+              "    compile_function(f, key=sys.argv[2], extra=extra)\n"
+              "finally:\n"
+              "    import os\n"
+              "    for path in (sys.argv[1], sys.argv[4]):\n"
+              "        try: os.unlink(path)\n"
+              "        except OSError: pass\n")
+    nice = shutil.which("nice")
+    cmd = ([nice, "-n", "10"] if nice else []) + [sys.executable, "-c", script, str(saved), key, extra or "",
+                                                   str(pending)]
+    try:
+        subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         start_new_session=True, close_fds=True)
+    except OSError:
+        pending.unlink(missing_ok=True)
+

@@ -64,6 +64,13 @@ class Steps:
     dt_descent: float = 0.1
 
 
+def initial_boost_steps(motor, p, steps: Steps) -> int:
+    """Boost RK4 steps before any refinement for stiffness: ``dt_boost`` over the
+    nominal burn (``p``'s ``burn_time_scale``), at least 20."""
+    burn = float(motor.burn_time) * float(p[params.index("burn_time_scale")])
+    return max(20, int(math.ceil(burn / steps.dt_boost)))
+
+
 class FlightModel:
     """Compiled-once functions of one :class:`FlightSetup`.
 
@@ -81,6 +88,9 @@ class FlightModel:
     (:mod:`~ironbark_opt.dynamics.model_cache`); the same setup is loaded, not rebuilt.
     """
 
+    #: length of the parameter vector ``p`` the Functions take
+    n_p = params.SIZE
+
     def __init__(self, setup, steps: Steps | None = None, *, jit=False):
         self.setup = setup
         self.steps = steps or Steps()
@@ -96,8 +106,7 @@ class FlightModel:
                 self.trajectory[ph] = self._run[ph] = cached[f"traj_{ph}"]
             self._build_events(cached["apex"])
         else:
-            burn = float(setup.motor.burn_time) * float(setup.nominal.get("burn_time_scale", 1.0))
-            self.n_boost = max(20, int(math.ceil(burn / self.steps.dt_boost)))
+            self.n_boost = initial_boost_steps(setup.motor, setup.nominal_parameters(), self.steps)
             self.rhs = {ph: rhs_mod.build(setup, ph) for ph in ("rail", "boost", "coast")}
             self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
             self.n_coast = None              # chosen from the nominal flight's stiffness below
@@ -127,7 +136,7 @@ class FlightModel:
         """Fix the RK4 grid from the *nominal* flight (deterministic: the same
         for every later run, batch, chunk or worker)."""
         t_r = self.rail_exit(p)
-        t_b = float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
+        t_b = self.burn_time(p)
         if t_r >= t_b:
             raise InputError(f"motor burns out ({t_b:.2f} s) before rail exit ({t_r:.2f} s)", field="motor")
         x_r = np.array(self._run["rail"](self._x0(p), 0.0, t_r, p))[:, -1]
@@ -157,6 +166,15 @@ class FlightModel:
         """Coast step boundaries as fractions of the coast (n_coast + 1)."""
         return grid_fractions(self.n_coast, self.coast_grading)
 
+    def coast_fractions_of(self, p) -> np.ndarray:
+        """Coast step boundaries of the flight with parameters ``p`` (the model's
+        own grid; a motor-slot model reads it from ``p``)."""
+        return self.coast_fractions
+
+    def burn_time(self, p):
+        """Burnout time [s] = the motor's burn time x ``burn_time_scale`` (numbers or MX)."""
+        return float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
+
     def _boost_segments(self, n: int) -> list[tuple[float | None, float | None, int]]:
         """The boost grid split at the motor's ignition/burnout events (air-start),
         so no thrust jump falls inside a step: [(start, end, steps)] with start/end
@@ -174,7 +192,7 @@ class FlightModel:
         """``(x0, t_rail, t_burnout, p) -> X`` over the segments of :meth:`_boost_segments`
         (event times scaled by ``burn_time_scale``); same signature as a phase trajectory."""
         x0, t0, t1 = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("t1")
-        p = ca.MX.sym("p", params.SIZE)
+        p = ca.MX.sym("p", self.n_p)
         s = p[params.index("burn_time_scale")]
         x, blocks = x0, []
         for i, (a, b, k) in enumerate(self._boost_segments(n)):
@@ -213,7 +231,7 @@ class FlightModel:
         """
         cache = self.__dict__.setdefault("_jac_cache", {})
         if f.name() not in cache:
-            xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", params.SIZE)
+            xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
             out = f(xs, ts, ps)
             xdot = out[0]
             if "c_roll" in f.name_out():          # advanced exactly by the integrator
@@ -241,7 +259,7 @@ class FlightModel:
         """
         span = float(t_end - t_b)
         n_uni = max(self.steps.n_coast, int(math.ceil(span / self.stable_step(self.rhs["coast"], x_b, t_b, p))))
-        X = np.array(phase_trajectory(self.step["coast"], n_uni, "traj_coast_probe")(x_b, t_b, t_end, p))
+        X = self._coast_probe(x_b, t_b, t_end, p, n_uni)
         vz = np.array(self._mapped("vz", n_uni)(X)).ravel()
         k_top = int(np.argmax(vz <= 0)) if np.any(vz <= 0) else n_uni
         idx = np.unique(np.linspace(0, max(k_top, 1), 30).astype(int))
@@ -257,6 +275,10 @@ class FlightModel:
             if best is None or n < best[0]:
                 best = (n, a)
         return best
+
+    def _coast_probe(self, x_b, t_b, t_end, p, n: int) -> np.ndarray:
+        """States after each of ``n`` uniform coast steps from burnout (grid choice only)."""
+        return np.array(phase_trajectory(self.step["coast"], n, "traj_coast_probe")(x_b, t_b, t_end, p))
 
     def _ensure_stable(self, x_b, t_b, t_end, P):
         """Refine the boost step if burnout (the stiffest point) needs it and
@@ -283,12 +305,12 @@ class FlightModel:
         return travel - (P["rail_length"] - self.setup.rail_exit_offset)
 
     def _build_events(self, apex: ca.Function | None = None):
-        ps = ca.SX.sym("p", params.SIZE)
+        ps = ca.SX.sym("p", self.n_p)
         P = params.unpack(ps)
         self._launch = ca.Function("launch", [ps], [self.initial_state(ps),
                                                     rail_direction_l(P["inclination"], P["heading"])])
         t_r = ca.MX.sym("t_r")
-        p = ca.MX.sym("p", params.SIZE)
+        p = ca.MX.sym("p", self.n_p)
         g = ca.Function("rail_residual", [t_r, p], [self.rail_residual(t_r, p)])
         self.rail_exit_root = ca.rootfinder("rail_exit", "newton", g,
                                             {"abstol": 1e-10, "max_iter": 50, "error_on_fail": True})
@@ -297,7 +319,7 @@ class FlightModel:
         if apex is None:
             h = ca.SX.sym("h")
             t = ca.SX.sym("t")
-            ps = ca.SX.sym("p", params.SIZE)
+            ps = ca.SX.sym("p", self.n_p)
             vz = self.vz_l(self.step["coast"](x, t, h, ps))
             apex = ca.Function("apex", [x, t, h, ps], [vz, ca.jacobian(vz, h)])
         self._apex = apex
@@ -311,7 +333,7 @@ class FlightModel:
         (one call, compiled with the model) instead of a Python loop of calls.
         """
         x, t, h0, dt = ca.MX.sym("x", 13), ca.MX.sym("t"), ca.MX.sym("h0"), ca.MX.sym("dt")
-        p = ca.MX.sym("p", params.SIZE)
+        p = ca.MX.sym("p", self.n_p)
         h = h0
         for _ in range(iterations):
             val, der = apex(x, t, h, p)
@@ -350,7 +372,7 @@ class FlightModel:
                              field="rail_length")
         x0, e = (np.array(v).ravel() for v in self._launch(p))
         geom = (x0, e, exit_distance)
-        burn = float(self.setup.motor.burn_time) * float(p[params.index("burn_time_scale")])
+        burn = float(self.burn_time(p))
         lo, g_lo, hi = 0.0, -exit_distance, min(0.5, burn)
         while True:
             g_hi, X = self._rail_travel(hi, p, geom)
@@ -410,12 +432,12 @@ class FlightModel:
         event times ``t_rail``, ``t_burnout``, ``t_apogee`` [s] and states.
         """
         p = np.asarray(p, dtype=float).ravel()
-        if p.size != params.SIZE:
-            raise InputError(f"parameter vector has {p.size} entries, expected {params.SIZE}")
+        if p.size != self.n_p:
+            raise InputError(f"parameter vector has {p.size} entries, expected {self.n_p}")
         _refuse_controller(self.setup)
         x0 = self._x0(p)
         t_r, X_rail = self._rail_exit(p)
-        t_b = float(self.setup.motor.burn_time) * p[params.index("burn_time_scale")]
+        t_b = self.burn_time(p)
         if t_r >= t_b:
             raise InputError(f"motor burns out ({t_b:.2f} s) before rail exit ({t_r:.2f} s)",
                              field="motor")
@@ -439,7 +461,7 @@ class FlightModel:
         else:
             raise SolverError("apogee not reached within the coast horizon")
         k = int(below[0])
-        fr = self.coast_fractions
+        fr = self.coast_fractions_of(p)
         span = t_end - t_b
         dt_c = span * (fr[k + 1] - fr[k])
         x_k = x_b if k == 0 else X_coast[:, k - 1]
@@ -479,12 +501,23 @@ class FlightModel:
     def _batch_function(self, phase: str) -> ca.Function:
         """The phase trajectory returning only what :meth:`run_batch` reads (fewer
         numbers to convert): rail -> (positions, final state), boost -> final state,
-        coast -> (states, vertical velocities)."""
+        coast -> (vertical velocities, the state before the first step ending at
+        v_z <= 0 (the start state if it is the first; zeros if none)).
+
+        The coast's state is picked inside the Function by a one-hot weight (the
+        first column where the running count of ``v_z <= 0`` steps is 1): one
+        column times 1 plus zeros is that column exactly, and 13 numbers per
+        sample are converted instead of 13 x n_coast."""
         x0, t0, t1 = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("t1")
-        p = ca.MX.sym("p", params.SIZE)
+        p = ca.MX.sym("p", self.n_p)
         X = self._run[phase](x0, t0, t1, p)
-        outs = {"rail": [X[0:3, :], X[:, -1]], "boost": [X[:, -1]],
-                "coast": [X, self.vz_l.map(X.size2())(X)]}[phase]
+        if phase == "coast":
+            vz = self.vz_l.map(X.size2())(X)
+            below = vz <= 0
+            first = below * (ca.cumsum(below, 1) == 1)                 # one-hot row (1 x n)
+            x_before = ca.mtimes(X[:, :-1], first[:, 1:].T) + x0 * first[:, 0]
+            return ca.Function(f"{phase}_batch", [x0, t0, t1, p], [vz, x_before])
+        outs = {"rail": [X[0:3, :], X[:, -1]], "boost": [X[:, -1]]}[phase]
         return ca.Function(f"{phase}_batch", [x0, t0, t1, p], outs)
 
     def _mapped(self, key, n):
@@ -514,8 +547,8 @@ class FlightModel:
         ``x_landing`` (13, n).
         """
         P = np.asarray(P, dtype=float)
-        if P.ndim != 2 or P.shape[0] != params.SIZE:
-            raise InputError(f"parameter matrix must be {params.SIZE} x n, got {P.shape}")
+        if P.ndim != 2 or P.shape[0] != self.n_p:
+            raise InputError(f"parameter matrix must be {self.n_p} x n, got {P.shape}")
         _refuse_controller(self.setup)
         n = P.shape[1]
         idx = np.arange(n)
@@ -524,7 +557,7 @@ class FlightModel:
         if np.any(exit_distance <= 0):
             raise InputError("rail length shorter than the nozzle-to-guide distance in some samples",
                              field="rail_length")
-        burn = float(self.setup.motor.burn_time) * P[params.index("burn_time_scale")]
+        burn = self.burn_time(P)
         rail, nr = self._mapped("rail:batch", n), self.steps.n_rail
 
         def travel(t):
@@ -563,16 +596,15 @@ class FlightModel:
         vz_b = np.array(self._mapped("vz", n)(x_b)).ravel()
         t_end = burn + vz_b / G0 + 2.0
         nc = self.n_coast
-        Xc, vz = self._mapped("coast:batch", n)(x_b, burn[None, :], t_end[None, :], P)
-        Xc, vz = np.array(Xc).reshape(13, n, nc), np.array(vz).reshape(n, nc)
+        vz, x_k = self._mapped("coast:batch", n)(x_b, burn[None, :], t_end[None, :], P)
+        vz, x_k = np.array(vz).reshape(n, nc), np.array(x_k)
         below = vz <= 0
         if not np.all(below.any(axis=1)):
             raise SolverError("apogee not reached within the coast horizon for some samples")
         kc = np.argmax(below, axis=1)
-        fr = self.coast_fractions
+        fr = self.coast_fractions_of(P[:, 0])
         span = t_end - burn
         dtc = span * (fr[kc + 1] - fr[kc])
-        x_k = np.where(kc[None, :] == 0, x_b, Xc[:, idx, np.maximum(kc - 1, 0)])
         t_k = burn + span * fr[kc]
         vz_k = np.where(kc == 0, vz_b, vz[idx, np.maximum(kc - 1, 0)])
         vz_end = vz[idx, kc]
@@ -642,7 +674,7 @@ class FlightModel:
                 f = rhs_mod.build(self.setup, "descent", cd_area=cd_area)
                 step = rk4_step(f, "step_descent")
             x, t, h = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("h")
-            ps = ca.SX.sym("p", params.SIZE)
+            ps = ca.SX.sym("p", self.n_p)
             z = step(x, t, h, ps)[2]
             cross = ca.Function("z_step", [x, t, h, ps], [z, ca.jacobian(z, h)])
             cache[key] = (f, step, phase_trajectory(step, 100, f"traj_{label}"), cross)
@@ -751,7 +783,7 @@ class FlightModel:
             base = cache.get(phase)
             if base is None:
                 f = self.rhs[phase] if phase in self.rhs else self._stage_rhs[phase]
-                xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", params.SIZE)
+                xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
                 base = ca.Function(f"outputs_{phase}", [xs, ts, ps], [f(xs, ts, ps)[1]])
                 if phase in self.rhs:
                     base = self._compiled(base)
@@ -769,14 +801,15 @@ def _refuse_controller(setup):
                          "mach or vertical_speed)", source=setup.source, field="airbrakes.trigger")
 
 
-def _final_state(model: FlightModel, p, T, t_rail_guess: float):
-    """Symbolic (MX) state at time ``T`` in the coast, through all phases."""
+def _final_state(model: FlightModel, p, T, t_rail_guess: float, t_rail=None):
+    """Symbolic (MX) state at time ``T`` in the coast, through all phases; the
+    rail exit by rootfinder from ``t_rail_guess``, or ``t_rail`` itself (an
+    optimisation variable constrained by :meth:`FlightModel.rail_residual`)."""
     if hasattr(type(model), "final_state_symbolic"):    # staged rockets (dynamics/staged.py)
         return model.final_state_symbolic(p, T, t_rail_guess)
-    P = params.unpack(p)
-    t_r = model.rail_exit_root(t_rail_guess, p)
+    t_r = model.rail_exit_root(t_rail_guess, p) if t_rail is None else t_rail
     x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
-    t_b = float(model.setup.motor.burn_time) * P["burn_time_scale"]
+    t_b = model.burn_time(p)
     X_b = model.trajectory["boost"](x_r, t_r, t_b, p)
     if ejection.ejection_time(model.setup, P) is not None and ejection.ejects_before_apogee(model):
         x_t = ejection.ejected_final_state(model, X_b[:, -1], t_b, p, T)
@@ -805,7 +838,7 @@ def apogee_functions(model: FlightModel, p_nominal) -> dict:
     _refuse_controller(model.setup)
     run = model.run(p_nominal)
     t_rail0, t_apogee0 = run["t_rail"], run["t_apogee"]
-    p = ca.MX.sym("p", params.SIZE)
+    p = ca.MX.sym("p", model.n_p)
     T = ca.MX.sym("T")
     x_t, t_r, x_r, X_b = _final_state(model, p, T, t_rail0)
     v_max = ca.mmax(ca.sqrt(ca.sum1(X_b[3:6, :] ** 2)))

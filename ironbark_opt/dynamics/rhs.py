@@ -52,13 +52,14 @@ OUTPUT_NAMES = (
 _EPS_V = 1e-3      # [m/s] regularises |v| and the cross-flow at zero speed
 
 
-def mass_properties(setup, t, P):
+def mass_properties(setup, t, P, motor=None):
     """Total mass [kg], CG [m aft of tip] and inertia (3x3, about CG) [kg m^2].
 
-    Dry rocket (+ offsets) + ballast point mass + motor(t); parallel-axis
-    theorem along the body axis.  Symbolic-safe in ``t`` and ``P``.
+    Dry rocket (+ offsets) + ballast point mass + motor(t) (``motor``: default
+    the setup's); parallel-axis theorem along the body axis.  Symbolic-safe in
+    ``t`` and ``P``.
     """
-    motor = setup.motor
+    motor = setup.motor if motor is None else motor
     ts = P["burn_time_scale"]
     m_d = setup.dry.mass + P["dry_mass_offset"]
     x_d = setup.dry.cg_x + P["dry_cg_offset"]
@@ -96,7 +97,7 @@ def _aero_state(setup, x, P):
                 re=rho * airspeed / mu, pressure=air["pressure"], w_b=w_b, v_b=v_b, q=q)
 
 
-def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
+def build(setup, phase: str, cd_area: float = 0.0, n_p: int = params.SIZE) -> ca.Function:
     """CasADi Function ``f(x, t, p) -> (xdot, y)`` for one flight phase.
 
     Parameters
@@ -107,6 +108,10 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
         thrust (phases are split at burnout, so no switch inside a step).
     cd_area : float [m^2]
         Parachute Cd*S, for the 'descent' phase only.
+    n_p : int
+        Length of ``p``: ``params.SIZE``, or more when the setup's motor is a
+        slot whose curve and mass data follow the parameters in ``p``
+        (:mod:`ironbark_opt.motors.slot`, one NLP for many motors).
 
     Returns
     -------
@@ -120,13 +125,13 @@ def build(setup, phase: str, cd_area: float = 0.0) -> ca.Function:
         raise ValueError(f"phase must be one of {PHASES}, got {phase!r}")
     x = ca.SX.sym("x", 13)
     t = ca.SX.sym("t")
-    p = ca.SX.sym("p", params.SIZE)
+    p = ca.SX.sym("p", n_p)
     P = params.unpack(p)
     aero = setup.aero
-    motor = setup.motor
+    motor = setup.motor.bind(p) if hasattr(setup.motor, "bind") else setup.motor
     burning = phase in ("rail", "boost")
 
-    m, x_cg, inertia = mass_properties(setup, t, P)
+    m, x_cg, inertia = mass_properties(setup, t, P, motor)
     s = _aero_state(setup, x, P)
     g = setup.gravity(s["h"]) if setup.gravity is not None else gravity(s["h"], setup.latitude)
     g_l = ca.vertcat(0, 0, -g)

@@ -138,6 +138,9 @@ def _not_for_staged(name):
 class StagedFlightModel:
     """Compiled-once functions of a :class:`StagedSetup` (numeric runs)."""
 
+    #: length of the parameter vector ``p`` (as :attr:`FlightModel.n_p`)
+    n_p = params.SIZE
+
     def __init__(self, setup: StagedSetup, steps: Steps | None = None, *, jit: bool = False):
         self.setup = setup
         self.steps = steps or Steps()

@@ -362,7 +362,10 @@ class SolidMotor(Motor):
         m = md + mp
         # Casing counted in the rocket (dry mass 0): the motor's CG is the
         # propellant's, also after burnout (no 0/0 when the propellant is gone).
-        cg = xp + 0.0 * mp if md == 0.0 else (md * xd + mp * xp) / m
+        if sm.is_symbolic(md):            # a motor slot (motors/slot.py): dry mass is a symbol
+            cg = sm.if_else(md == 0.0, xp + 0.0 * mp, (md * xd + mp * xp) / m)
+        else:
+            cg = xp + 0.0 * mp if md == 0.0 else (md * xd + mp * xp) / m
         if self.grains is not None:
             ip_t, ip_a = self.grains.inertia(mp, mp0)
         else:

@@ -21,6 +21,7 @@ the constraints and reports the closest feasible apogee.
 """
 from __future__ import annotations
 
+import hashlib
 import time
 from dataclasses import dataclass, field
 from typing import Mapping
@@ -29,6 +30,7 @@ import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
+from ironbark_opt.dynamics.integrator import cached_library, compile_detached, compile_function
 from ironbark_opt.dynamics.model import _final_state
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import InputError
@@ -118,7 +120,7 @@ def _bounds(setup, mass_max, x_range):
 def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float | None = None,
                   x_range=None, ballast_x: float | None = None, min_rail_speed: float | None = None,
                   min_margin: float | None = None, parameters: Mapping[str, float] | None = None,
-                  ipopt_options: Mapping | None = None) -> BallastSolution:
+                  ipopt_options: Mapping | None = None, model=None, motor_grid=None) -> BallastSolution:
     """Ballast mass (and position) putting apogee on ``target``.
 
     Parameters
@@ -141,6 +143,10 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
         Other parameter overrides (SI), e.g. a forecast's wind offsets.
     ipopt_options : mapping, optional
         Passed to IPOPT.
+    model : SlotFlightModel, optional
+        Motor choice: one model (and one NLP) for every candidate
+        (:mod:`ironbark_opt.dynamics.slot_model`); ``setup.motor`` flies in its
+        slot on ``motor_grid``, the RK4 grid its own model would choose.
 
     Returns
     -------
@@ -160,7 +166,10 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
                          field="ballast.x_min")
     p_nom = setup.nominal_parameters(**overrides)
     i_m, i_x = params.index("ballast_mass"), params.index("ballast_x")
-    model = flight_model(setup)
+    if model is None:
+        model = flight_model(setup)
+    else:
+        p_nom = model.parameters(p_nom, setup.motor, motor_grid)
     if ballast_x is None and not free_position and x_bay is not None and not x_bay[0] <= p_nom[i_x] <= x_bay[1]:
         p_nom[i_x] = 0.5 * (x_bay[0] + x_bay[1])
 
@@ -185,14 +194,17 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     # Initial guess: interpolate between the bracketing flights.
     frac = (a_lo - target_agl) / (a_lo - a_hi)
     guess = fly(frac * m_max)
-    nlp = _nlp(model, free_position, min_rail_speed is not None, min_margin is not None, guess["t_rail"],
-               dict(ipopt_options or {}))
-    lbg = [0.0, 0.0] + [float(v) for v in (min_rail_speed, min_margin) if v is not None]
-    ubg = [0.0, 0.0] + [np.inf] * (len(lbg) - 2)
-    lbw = [0.0] + ([x_bay[0]] if free_position else []) + [guess["t_burnout"] + 1e-3]
-    ubw = [m_max] + ([x_bay[1]] if free_position else []) + [guess["t_apogee"] + 30.0]
-    w0 = [frac * m_max] + ([p_nom[i_x]] if free_position else []) + [guess["t_apogee"]]
-    par = np.concatenate([p_nom, [target_agl, m_max]])
+    nlp = _nlp(model, free_position, min_rail_speed is not None, min_margin is not None, dict(ipopt_options or {}))
+    n_eq = nlp["equalities"]
+    lbg = [0.0] * n_eq + [float(v) for v in (min_rail_speed, min_margin) if v is not None]
+    ubg = [0.0] * n_eq + [np.inf] * (len(lbg) - n_eq)
+    rail = nlp["rail_variable"]
+    lbw = [0.0] + ([x_bay[0]] if free_position else []) + ([0.0] if rail else []) + [guess["t_burnout"] + 1e-3]
+    ubw = [m_max] + ([x_bay[1]] if free_position else []) + ([guess["t_burnout"]] if rail else []) \
+        + [guess["t_apogee"] + 30.0]
+    w0 = [frac * m_max] + ([p_nom[i_x]] if free_position else []) + ([guess["t_rail"]] if rail else []) \
+        + [guess["t_apogee"]]
+    par = np.concatenate([p_nom, [target_agl, m_max, guess["t_rail"]]])
     sol = nlp["solve"](x0=w0, p=par, lbx=lbw, ubx=ubw, lbg=lbg, ubg=ubg)
     stats = nlp["solve"].stats()
     wopt = np.array(sol["x"]).ravel()
@@ -201,11 +213,13 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     active: list = []
     if not feasible:
         # Constraints make the target unreachable: closest feasible apogee.
-        sol = nlp["closest"](x0=w0, p=par, lbx=lbw, ubx=ubw, lbg=[0.0] + lbg[2:], ubg=[0.0] + ubg[2:])
+        keep = [i for i in range(len(lbg)) if i != n_eq - 1]        # all but apogee = target
+        sol = nlp["closest"](x0=w0, p=par, lbx=lbw, ubx=ubw, lbg=[lbg[i] for i in keep], ubg=[ubg[i] for i in keep])
         wopt = np.array(sol["x"]).ravel()
         status = f"target not reachable under the constraints ({status}); closest feasible apogee shown"
         gv = np.array(sol["g"]).ravel()
-        active = [n for n, val, lb in zip(nlp["names"], gv[1:], lbg[2:]) if abs(val - lb) < 1e-4 * max(1, abs(lb))]
+        active = [n for n, val, lb in zip(nlp["names"], gv[n_eq - 1:], lbg[n_eq:])
+                  if abs(val - lb) < 1e-4 * max(1, abs(lb))]
     m_opt = float(wopt[0])
     x_opt = float(wopt[1]) if free_position else float(p_nom[i_x])
     if m_opt <= 1e-9:
@@ -222,42 +236,93 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
                      iterations=stats.get("iter_count"), zero_ballast_apogee=a_lo)
 
 
-def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, t_rail_guess: float, ipopt_options):
+def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_options):
     """IPOPT solvers for the ballast problem, built once per model and reused.
 
-    NLP parameters: the nominal parameter vector, the target [m AGL] and the
-    ballast bound [kg] (for scaling), so a warm solve pays no graph building.
+    NLP parameters: the nominal parameter vector (``model.n_p`` long: with a
+    motor slot, the motor and its grid too), the target [m AGL], the ballast
+    bound [kg] (for scaling) and the rail-exit rootfinder's first guess [s], so
+    a warm solve, or the next candidate motor, pays no graph building.
+
+    The rail-exit time is a variable with the rail residual as an equality
+    constraint (instead of a rootfinder inside the graph), so the NLP's
+    functions and Jacobian generate C: with ``model.jit`` they are compiled
+    (on-disk cache, named by the model's key; ``"auto"``: compiled in the
+    background, the VM until the library exists).  Staged rockets keep the
+    rootfinder (their own ``final_state_symbolic``).
     """
     key = ("ballast_nlp", free_position, rail_speed, margin, tuple(sorted(ipopt_options.items())))
     cache = model.__dict__.setdefault("_nlp_cache", {})
     if key in cache:
         return cache[key]
-    i_m, i_x = params.index("ballast_mass"), params.index("ballast_x")
-    par = ca.MX.sym("par", params.SIZE + 2)
-    p_sym = par[: params.SIZE]
-    target_agl, m_max = par[params.SIZE], par[params.SIZE + 1]
-    m_sym, x_sym, T_sym = ca.MX.sym("m_b"), ca.MX.sym("x_b"), ca.MX.sym("T")
-    p_sym = ca.vertcat(p_sym[:i_m], m_sym, x_sym if free_position else p_sym[i_x], p_sym[i_x + 1:])
-    w = [m_sym] + ([x_sym] if free_position else []) + [T_sym]
-    x_T, t_r, x_r, _ = _final_state(model, p_sym, T_sym, t_rail_guess)
-    g = [model.vz_l(x_T), x_T[2] - target_agl]
-    names = []
-    if rail_speed:
-        g.append(ca.norm_2(x_r[3:6]))
-        names.append("rail_exit_speed_mps >= minimum")
-    if margin:
-        g.append(model.rhs["boost"](x_r, t_r, p_sym)[1][_SM])
-        names.append("static_margin_rail_exit_cal >= minimum")
-    W = ca.vertcat(*w)
+    rail_variable = not hasattr(type(model), "final_state_symbolic")
+    name = f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
+    key_c = None
+    if rail_variable and model._key is not None:
+        key_c = hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
+    names = [n for n, on in (("rail_exit_speed_mps >= minimum", rail_speed),
+                             ("static_margin_rail_exit_cal >= minimum", margin)) if on]
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
             "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-10,
             "ipopt.constr_viol_tol": 1e-6, "ipopt.max_iter": 100}
     opts.update({(k if k.startswith("ipopt.") else f"ipopt.{k}"): v for k, v in ipopt_options.items()})
-    solve = ca.nlpsol("ballast", "ipopt", {"x": W, "p": par, "f": m_sym / m_max, "g": ca.vertcat(*g)}, opts)
-    closest = ca.nlpsol("ballast_closest", "ipopt", {"x": W, "p": par, "f": ((x_T[2] - target_agl) / 100.0) ** 2,
-                                                      "g": ca.vertcat(g[0], *g[2:])}, opts)
-    cache[key] = {"solve": solve, "closest": closest, "names": names}
+    compiled = cached_library(name, key_c) if key_c is not None and model.jit else None
+    if compiled is not None:        # no graph to build: the closest-apogee NLP builds its own if ever needed
+        cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", compiled, opts), "names": names,
+                      "equalities": 3, "rail_variable": True,        # rail residual, v_z(T) = 0, z(T) = target
+                      "closest": lambda **kw: _nlp_graph(model, free_position, rail_speed, margin)[1](opts)(**kw)}
+        return cache[key]
+    oracle, closest, n_eq = _nlp_graph(model, free_position, rail_speed, margin)
+    if rail_variable and model.jit == "auto" and key_c is not None:
+        # generated and compiled in a detached process: a first run costs no more than the VM
+        compile_detached(oracle, key_c, "ironbark_opt.optimise.ballast:_jacobian_in_x")
+    elif rail_variable and model.jit:
+        oracle = compile_function(oracle, key=key_c, extra=lambda: (_jacobian_in_x(oracle),))
+    cache[key] = {"solve": ca.nlpsol("ballast", "ipopt", oracle, opts), "names": names, "equalities": n_eq,
+                  "rail_variable": rail_variable, "closest": lambda **kw: closest(opts)(**kw)}
     return cache[key]
+
+
+def _nlp_graph(model, free_position: bool, rail_speed: bool, margin: bool):
+    """(NLP Function ``(x, p) -> (f, g)``, closest-apogee solver factory ``opts -> nlpsol``,
+    number of equality constraints) of :func:`_nlp`."""
+    i_m, i_x = params.index("ballast_mass"), params.index("ballast_x")
+    n_p = model.n_p
+    par = ca.MX.sym("par", n_p + 3)
+    p_sym = par[:n_p]
+    target_agl, m_max, t_rail_guess = par[n_p], par[n_p + 1], par[n_p + 2]
+    m_sym, x_sym, T_sym = ca.MX.sym("m_b"), ca.MX.sym("x_b"), ca.MX.sym("T")
+    p_sym = ca.vertcat(p_sym[:i_m], m_sym, x_sym if free_position else p_sym[i_x], p_sym[i_x + 1:])
+    rail_variable = not hasattr(type(model), "final_state_symbolic")
+    tr_sym = ca.MX.sym("t_rail")
+    w = [m_sym] + ([x_sym] if free_position else []) + ([tr_sym] if rail_variable else []) + [T_sym]
+    x_T, t_r, x_r, _ = _final_state(model, p_sym, T_sym, t_rail_guess, t_rail=tr_sym if rail_variable else None)
+    g = ([model.rail_residual(t_r, p_sym)] if rail_variable else []) + [model.vz_l(x_T), x_T[2] - target_agl]
+    n_eq = len(g)
+    if rail_speed:
+        g.append(ca.norm_2(x_r[3:6]))
+    if margin:
+        g.append(model.rhs["boost"](x_r, t_r, p_sym)[1][_SM])
+    W = ca.vertcat(*w)
+    name = f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
+    oracle = ca.Function(name, [W, par], [m_sym / m_max, ca.vertcat(*g)], ["x", "p"], ["f", "g"])
+    closest = {"x": W, "p": par, "f": ((x_T[2] - target_agl) / 100.0) ** 2, "g": ca.vertcat(*g[:n_eq - 1], *g[n_eq:])}
+    return oracle, (lambda opts: ca.nlpsol("ballast_closest", "ipopt", closest, opts)), n_eq
+
+
+def _jacobian_in_x(oracle: ca.Function) -> ca.Function:
+    """``jac_<name>``, the Jacobian of the NLP Function as ``casadi.external`` looks
+    it up, with respect to the variables only: the blocks for the parameters (the
+    whole parameter vector, ~1500 entries with a motor slot) are structurally
+    zero, since IPOPT never differentiates with respect to parameters; computing
+    them would cost a reverse sweep per output on every call."""
+    W, par = (ca.MX.sym(n, oracle.sparsity_in(i)) for i, n in enumerate(("x", "p")))
+    f, G = oracle(W, par)
+    out_f, out_g = ca.MX.sym("out_f", ca.Sparsity(*f.shape)), ca.MX.sym("out_g", ca.Sparsity(*G.shape))
+    return ca.Function(f"jac_{oracle.name()}", [W, par, out_f, out_g],
+                       [ca.jacobian(f, W), ca.MX(f.numel(), par.numel()), ca.jacobian(G, W),
+                        ca.MX(G.numel(), par.numel())],
+                       ["x", "p", "out_f", "out_g"], ["jac_f_x", "jac_f_p", "jac_g_x", "jac_g_p"])
 
 
 def _solution(setup, model, p_nom, m_b, x_b, run, target_agl, feasible, status, active, t_start, common,
@@ -284,4 +349,4 @@ def _solution(setup, model, p_nom, m_b, x_b, run, target_agl, feasible, status, 
     if iterations is not None:
         values["iterations"] = int(iterations)
     return BallastSolution(feasible=bool(feasible), status=status, active=tuple(active), values=values,
-                           parameters=params.to_dict(p), **common)
+                           parameters=params.to_dict(p[:params.SIZE]), **common)

@@ -1,10 +1,18 @@
 """Motor choice: solve the ballast problem for every candidate motor and rank them.
 
+Every tabulated solid motor flies in a *motor slot*
+(:mod:`ironbark_opt.motors.slot`, :mod:`ironbark_opt.dynamics.slot_model`):
+its thrust curve, mass model and RK4 grid are numbers in the parameter
+vector, so one flight model and one ballast NLP (compiled once per rocket,
+cached on disk) serve every candidate, each on the grid its own model would
+choose — the same ballast as a solve on the motor's own model.  Other motors
+(grain geometry, composite air-start motors) and explicit ``processes`` /
+``executor`` requests take one model per motor.
+
 Why enumeration and not a mixed-integer NLP (CasADi's ``bonmin``): a team
-chooses among a handful to a few dozen motors, each solve takes about a
-second, the candidates are independent (so they run in parallel processes),
-and every candidate gets its own exact, verified answer — including the
-infeasible ones, with the reason.  A relaxed formulation would have to blend
+chooses among a handful to a few dozen motors, the candidates are
+independent, and every candidate gets its own exact, verified answer —
+including the infeasible ones, with the reason.  A relaxed formulation would have to blend
 thrust curves (a blend of two motors is no motor), and branch-and-bound on
 one binary per motor does strictly more work than solving each candidate
 once.  Enumeration is exact and simpler; ``bonmin`` pays off only when the
@@ -14,6 +22,7 @@ decision does not have.
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
@@ -153,6 +162,67 @@ def _rank_key(objective: str, target_agl: float):
     return key
 
 
+#: fewest candidates for which one slotted model beats one model per motor
+SLOT_MIN_CANDIDATES = 2
+
+
+def _round_up(n: int, quantum: int) -> int:
+    return quantum * int(math.ceil(n / quantum))
+
+
+def _solve_slotted(setup, cands, target, kwargs, results, failures) -> list:
+    """Solve the candidates that fit a motor slot on one model and one NLP
+    (:mod:`ironbark_opt.dynamics.slot_model`), each on the RK4 grid its own
+    model would choose, so the ballast is the per-motor answer; returns the
+    candidates left for the one-model-per-motor path (and their motors).
+
+    Slot sizes are rounded up (knots to 16, grids to 64 steps) so that other
+    candidate lists of the same rocket reuse the cached model.
+    """
+    from ironbark_opt.dynamics.model import MIN_COAST_STEPS, Steps, initial_boost_steps
+    from ironbark_opt.dynamics.setup import FlightSetup
+    from ironbark_opt.dynamics.slot_model import SlotFlightModel
+    from ironbark_opt.motors import slot
+
+    loaded, rest = [], []
+    for c in cands:
+        try:
+            motor = c.load()
+        except IronbarkError as err:
+            failures.append((c.label, str(err)))
+            continue
+        (loaded if slot.fits(motor) else rest).append((c, motor))
+    if len(loaded) < SLOT_MIN_CANDIDATES or not isinstance(setup, FlightSetup) \
+            or getattr(setup, "airbrakes", None) is not None:
+        return [c for c, _ in rest + loaded]
+    p_nominal = setup.nominal_parameters()
+    jit, steps = "auto", Steps()
+    n_knots = _round_up(max(slot.knots(m) for _, m in loaded), 16)
+    n_boost = max(initial_boost_steps(m, p_nominal, steps) for _, m in loaded)
+    capacity = [_round_up(n_boost + 1, 64), _round_up(MIN_COAST_STEPS + 1, 64)]
+    model = SlotFlightModel(setup, n_knots, capacity, steps, jit=jit)
+    grids = []
+    for c, motor in loaded:
+        try:
+            grids.append(model.grid_for(motor, p_nominal))
+        except IronbarkError as err:
+            failures.append((c.label, str(err)))
+            grids.append(None)
+    need = [max([g[0] for g in grids if g] + [0]) + 1, max([g[1] for g in grids if g] + [0]) + 1]
+    if need[0] > capacity[0] or need[1] > capacity[1]:
+        capacity = [max(capacity[0], _round_up(need[0], 64)), max(capacity[1], _round_up(need[1], 64))]
+        model = SlotFlightModel(setup, n_knots, capacity, steps, jit=jit)
+    for (c, motor), grid in zip(loaded, grids):
+        if grid is None:
+            continue
+        try:
+            results.append(solve_ballast(dataclasses.replace(setup, motor=motor), target, model=model,
+                                         motor_grid=grid, **kwargs))
+        except IronbarkError as err:
+            failures.append((c.label, str(err)))
+    return [c for c, _ in rest]
+
+
 def _solve_one(setup, candidate: Candidate, target, kwargs):
     motor = candidate.load()
     return solve_ballast(dataclasses.replace(setup, motor=motor), target, **kwargs)
@@ -214,8 +284,10 @@ def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least
     objective : {'least_ballast', 'largest_margin', 'closest_apogee'}
         Order among feasible candidates (infeasible ones follow, closest first).
     processes : int, optional
-        Worker processes (default: up to the CPU count; 1 runs in this process).
-        Parallel runs rebuild the setup from ``setup.source`` in each worker.
+        Default (None) or 1: slotted candidates in this process (one model, one
+        NLP); the remaining ones in up to the CPU count of worker processes
+        (None) or here (1).  N > 1: every candidate in N workers, one model per
+        motor (each worker rebuilds the setup from ``setup.source``).
     load_kwargs : mapping, optional
         Keyword arguments ``load_setup`` used for ``setup`` (rail_exit, ...).
     executor : None, "local", "local:N", "dask://HOST:PORT", distributed.Client or Executor
@@ -228,9 +300,13 @@ def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least
     if objective not in OBJECTIVES:
         raise InputError(f"objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}", field="objective")
     cands = expand_candidates(candidates)
-    n_proc = processes if processes is not None else min(len(cands), os.cpu_count() or 1)
     results: list = []
     failures: list = []
+    if executor is None and processes in (None, 1):
+        # one model and one NLP for every tabulated solid motor (in this process:
+        # a worker would pay the imports and the model again); the others below
+        cands = _solve_slotted(setup, cands, target, ballast_kwargs, results, failures)
+    n_proc = processes if processes is not None else min(len(cands), os.cpu_count() or 1)
     if executor is not None:
         _solve_on_executor(executor, setup, cands, target, ballast_kwargs, results, failures)
     elif n_proc > 1 and setup.source is not None and len(cands) > 1:

@@ -1,0 +1,149 @@
+"""One flight model for many motors: the motor and the RK4 grid in ``p``.
+
+:class:`SlotFlightModel` is a :class:`~ironbark_opt.dynamics.model.FlightModel`
+whose motor is a :class:`~ironbark_opt.motors.slot.MotorSlot` and whose boost
+and coast grids are read from ``p`` (:func:`~ironbark_opt.dynamics.integrator.padded_grid`).
+The parameter vector is
+
+    p_ext = [p (params.SIZE) | motor data (slot.n_data) | boost grid (2 cap_b) | coast grid (2 cap_c)]
+
+so the model (and an NLP built on it) is built once and flies every candidate
+motor with *its own* grid — the grid :meth:`FlightModel._choose_grid` picks
+for that motor — by changing numbers.  Steps past a motor's grid have length
+0 and leave the state exactly as it is, so a candidate flies the same RK4
+steps as on its own model.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ironbark_opt import params
+from ironbark_opt.dynamics import model_cache
+from ironbark_opt.dynamics import rhs as rhs_mod
+from ironbark_opt.dynamics.integrator import grid_fractions, jit_mode, padded_grid, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.model import FlightModel, Steps, initial_boost_steps
+from ironbark_opt.motors.slot import MotorSlot
+
+
+class SlotFlightModel(FlightModel):
+    """Flight model of ``setup`` with a motor slot of ``n_knots`` knots and grids
+    of up to ``capacity = (boost steps, coast steps)``.
+
+    Use :meth:`parameters` to lay out a candidate's ``p_ext``; ``run``,
+    ``_final_state`` and the ballast NLP take ``p_ext``.
+    """
+
+    def __init__(self, setup, n_knots: int, capacity: tuple[int, int], steps: Steps | None = None, *, jit=False):
+        self.slot = MotorSlot(n_knots, params.SIZE)
+        self.cap_boost, self.cap_coast = int(capacity[0]), int(capacity[1])
+        self.o_boost = params.SIZE + self.slot.n_data
+        self.o_coast = self.o_boost + 2 * self.cap_boost
+        self.n_p = self.o_coast + 2 * self.cap_coast
+        self.setup = dataclasses.replace(setup, motor=self.slot)
+        self.steps = steps or Steps()
+        self.jit = jit_mode(jit)
+        self.trajectory, self._run = {}, {}
+        self.n_boost, self.n_coast, self.coast_grading = self.cap_boost, self.cap_coast, 1.0
+        self._key = model_cache.model_key(self.setup, (self.steps, self.n_p))
+        cached = model_cache.load(self._key)
+        if cached is not None:
+            self.rhs = {ph: cached[f"rhs_{ph}"] for ph in ("rail", "boost", "coast")}
+            self.step = {ph: cached[f"step_{ph}"] for ph in ("rail", "boost", "coast")}
+            for ph in ("rail", "boost", "coast"):
+                self.trajectory[ph] = cached[f"traj_{ph}"]
+            self._build_events(cached["apex"])
+        else:
+            self.rhs = {ph: rhs_mod.build(self.setup, ph, n_p=self.n_p) for ph in ("rail", "boost", "coast")}
+            self.step = {ph: rk4_step(f, f"step_{ph}") for ph, f in self.rhs.items()}
+            self.trajectory["rail"] = phase_trajectory(self.step["rail"], self.steps.n_rail, "traj_rail")
+            for ph, cap, off in (("boost", self.cap_boost, self.o_boost), ("coast", self.cap_coast, self.o_coast)):
+                self.trajectory[ph] = phase_trajectory(self.step[ph], cap, f"traj_{ph}", grid_offset=off)
+            self._build_events()
+            model_cache.store(self._key, {**{f"rhs_{ph}": f for ph, f in self.rhs.items()},
+                                          **{f"step_{ph}": f for ph, f in self.step.items()},
+                                          **{f"traj_{ph}": f for ph, f in self.trajectory.items()},
+                                          "apex": self._apex})
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = self._compiled(self.trajectory[ph])
+        self._apogee_run = self._compiled(self._apogee_event)
+
+    # ------------------------------------------------------------ layout of p_ext
+    def parameters(self, p, motor, grid: tuple[int, int, float]) -> np.ndarray:
+        """``p_ext`` for parameters ``p`` (params.SIZE), ``motor`` and its RK4 grid
+        ``(n_boost, n_coast, coast_grading)``."""
+        n_b, n_c, a = grid
+        return np.concatenate([np.asarray(p, dtype=float)[:params.SIZE], self.slot.pack(motor),
+                               padded_grid(n_b, self.cap_boost), padded_grid(n_c, self.cap_coast, a)])
+
+    def grid_for(self, motor, p_nominal) -> tuple[int, int, float]:
+        """The RK4 grid ``motor``'s own model would choose (``_choose_grid`` on the
+        nominal parameters), flown here.  Needs ``n_boost`` to fit the slot."""
+        n0 = initial_boost_steps(motor, p_nominal, self.steps)
+        if n0 >= self.cap_boost:
+            raise ValueError(f"{n0} boost steps do not fit a grid of {self.cap_boost}")
+        saved = self.discretisation()
+        try:
+            self.n_boost = n0
+            self._choose_grid(self.parameters(p_nominal, motor, (n0, 1, 1.0)))
+            return self.discretisation()
+        finally:
+            self.n_boost, self.n_coast, self.coast_grading = saved
+
+    def fits(self, grid) -> bool:
+        """True when ``grid`` leaves at least one spare step in both phases (exact end fractions)."""
+        return grid[0] < self.cap_boost and grid[1] < self.cap_coast
+
+    # ------------------------------------------------------------ FlightModel hooks
+    def _coast_probe(self, x_b, t_b, t_end, p, n: int) -> np.ndarray:
+        """The uniform probe of the grid choice on the slot's own (compiled) coast,
+        its grid set in ``p``: the same steps, no new Function per candidate."""
+        fr = grid_fractions(n)
+        starts, lengths = fr[:-1], np.diff(fr)
+        q, cap, o = np.array(p, dtype=float), self.cap_coast, self.o_coast
+        cols, x = [], x_b
+        for j in range(0, n, cap):      # longer probes in pieces: the same t0 + span * f0 and span * df
+            st, ln = starts[j:j + cap], lengths[j:j + cap]
+            q[o:o + cap] = np.r_[st, np.full(cap - st.size, 1.0)]
+            q[o + cap:o + 2 * cap] = np.r_[ln, np.zeros(cap - st.size)]
+            cols.append(np.array(self._run["coast"](x, t_b, t_end, q))[:, :st.size])
+            x = cols[-1][:, -1]
+        return np.hstack(cols)
+
+    def _set_trajectory(self, phase: str, n: int):
+        """The grids live in ``p``: nothing to rebuild (``_choose_grid`` only records ``n``)."""
+
+    def burn_time(self, p):
+        return self.slot.burn_time(p) * p[params.index("burn_time_scale")]
+
+    def _steps_in(self, p, offset: int, cap: int) -> int:
+        return int(np.count_nonzero(np.asarray(p, dtype=float)[offset + cap:offset + 2 * cap]))
+
+    def coast_fractions_of(self, p) -> np.ndarray:
+        p = np.asarray(p, dtype=float)
+        starts = p[self.o_coast:self.o_coast + self.cap_coast]
+        n = self._steps_in(p, self.o_coast, self.cap_coast)
+        return np.r_[starts[:n], starts[n]]
+
+    def boost_times(self, t_r: float, t_b: float, p) -> np.ndarray:
+        """Times of the boost columns (the padded ones at burnout)."""
+        p = np.asarray(p, dtype=float)
+        starts = p[self.o_boost:self.o_boost + self.cap_boost]
+        lengths = p[self.o_boost + self.cap_boost:self.o_boost + 2 * self.cap_boost]
+        return t_r + (t_b - t_r) * np.minimum(starts + lengths, 1.0)
+
+    def run(self, p, *, descent: bool = False) -> dict:
+        """As :meth:`FlightModel.run`, without the boost grid's padded steps."""
+        out = super().run(p, descent=descent)
+        n_b = self._steps_in(out["p"], self.o_boost, self.cap_boost)
+        if n_b < self.cap_boost:
+            first = 1 + self.steps.n_rail + n_b                 # t = 0, rail columns, real boost columns
+            keep = np.r_[0:first, first + self.cap_boost - n_b:out["t"].size]
+            t_b = float(self.burn_time(out["p"]))
+            times = out["t"]
+            times[1 + self.steps.n_rail:first] = (out["t_rail"] + (t_b - out["t_rail"])
+                                                   * np.arange(1, n_b + 1) / n_b)
+            for k in ("t", "x", "phase"):
+                out[k] = out[k][..., keep]
+        return out

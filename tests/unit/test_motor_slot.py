@@ -1,0 +1,63 @@
+"""Motor slot (motors/slot.py) and grids read from p (integrator.padded_grid):
+the symbolic slot flies the same numbers as the motor itself, and a padded
+grid the same RK4 steps as the constant one."""
+import dataclasses
+from pathlib import Path
+
+import casadi as ca
+import numpy as np
+import pytest
+
+from ironbark_opt.dynamics.integrator import grid_fractions, padded_grid, phase_trajectory, rk4_step
+from ironbark_opt.motors import load_motor
+from ironbark_opt.motors.slot import MotorSlot, fits, knots
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "motors"
+
+
+def _motors():
+    base = load_motor(DATA / "Cesaroni_7579M1520-P.eng")
+    return [base, load_motor(DATA / "AeroTech_M1340W.eng"),
+            dataclasses.replace(base, dry_mass=0.0),                      # casing counted in the rocket
+            dataclasses.replace(base, nozzle_exit_area=2.0e-3)]
+
+
+@pytest.mark.parametrize("i", range(4))
+def test_slot_motor_equals_the_motor(i):
+    motor = _motors()[i]
+    assert fits(motor)
+    slot = MotorSlot(knots(motor) + 7, offset=3)        # padded, and not at the start of p
+    p = ca.SX.sym("p", 3 + slot.n_data)
+    t = ca.SX.sym("t")
+    bound = slot.bind(p)
+    f = ca.Function("m", [t, p], [bound.thrust(t, 1.1, 0.95), bound.mass(t, 1.1, 0.95), bound.cg(t, 1.1, 0.95),
+                                  *bound.inertia(t, 1.1, 0.95), bound.pressure_thrust_correction(80000.0 + t)])
+    values = np.r_[np.zeros(3), slot.pack(motor)]
+    assert float(slot.burn_time(values)) == motor.burn_time
+    for tau in np.r_[np.linspace(-0.1, motor.burn_time * 0.95 + 0.2, 57), motor.burn_time * 0.95]:
+        got = [float(v) for v in f(tau, values)]
+        want = [motor.thrust(tau, 1.1, 0.95), motor.mass(tau, 1.1, 0.95), motor.cg(tau, 1.1, 0.95),
+                *motor.inertia(tau, 1.1, 0.95), motor.pressure_thrust_correction(80000.0 + tau)]
+        # the same expressions on the same numbers: equal to round-off
+        np.testing.assert_allclose(got, want, rtol=1e-13, atol=1e-12)
+
+
+def test_slot_refuses_motors_it_cannot_hold():
+    motor = _motors()[0]
+    with pytest.raises(ValueError):
+        MotorSlot(knots(motor) - 1, 0).pack(motor)
+
+
+def test_padded_grid_flies_the_same_steps():
+    # dx/dt = -x + t, p[0] a rate; grid fractions read from p (padded) or constant
+    x, t, p = ca.SX.sym("x", 2), ca.SX.sym("t"), ca.SX.sym("p", 1 + 2 * 12)
+    rhs = ca.Function("rhs", [x, t, p], [ca.vertcat(-p[0] * x[0] + t, x[0])])
+    step = rk4_step(rhs, "s")
+    fixed = phase_trajectory(step, 9, "fixed", 0.5)
+    padded = phase_trajectory(step, 12, "padded", grid_offset=1)
+    pv = np.r_[0.7, padded_grid(9, 12, 0.5)]
+    a = np.array(fixed([1.0, 0.0], 0.3, 2.3, pv))
+    b = np.array(padded([1.0, 0.0], 0.3, 2.3, pv))
+    assert np.array_equal(a, b[:, :9])                              # bit for bit
+    assert np.array_equal(b[:, 9:], np.repeat(a[:, -1:], 3, axis=1))  # zero-length steps: state unchanged
+    assert np.allclose(np.r_[pv[1:13], 1.0][:10], grid_fractions(9, 0.5))
