@@ -811,7 +811,7 @@ def _final_state(model: FlightModel, p, T, t_rail_guess: float, t_rail=None):
     x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
     t_b = model.burn_time(p)
     X_b = model.trajectory["boost"](x_r, t_r, t_b, p)
-    if ejection.ejection_time(model.setup, P) is not None and ejection.ejects_before_apogee(model):
+    if ejection.ejection_time(model.setup, p) is not None and ejection.ejects_before_apogee(model):
         x_t = ejection.ejected_final_state(model, X_b[:, -1], t_b, p, T)
     else:
         x_t = model.trajectory["coast"](X_b[:, -1], t_b, T, p)[:, -1]
