@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, atmosphere_label, atmosphere_load_kwargs,
+from ironbark_opt.cli.common import (PLOT_SUFFIXES, atmosphere_label, atmosphere_load_kwargs,
                                      atmosphere_options, atmosphere_summary, atomic_write, check_output_path, emit,
                                      handle_errors, json_option, table_option)
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
