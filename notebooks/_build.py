@@ -130,7 +130,7 @@ LAUNCH_MORNING = [
     ("md", "## 1. The forecast over the site\n\n`forecast_atmosphere` is what `ironbark ballast --forecast rap "
            "--site spaceport_america --time ...` does: the profile replaces the rocket file's atmosphere and "
            "the site's position and ground elevation come with it."),
-    ("code", "from ironbark_opt.vehicle import load_setup\nfrom ironbark_opt.cli_optimise import forecast_atmosphere\n"
+    ("code", "from ironbark_opt.vehicle import load_setup\nfrom ironbark_opt.cli.optimise import forecast_atmosphere\n"
              "from ironbark_opt.atmosphere.files import describe_flown\n"
              "TIME = '2024-12-11T21:00Z'\n"
              "setup = forecast_atmosphere(load_setup(ROOT / 'examples/calisto/calisto.toml'), 'rap', "

@@ -108,7 +108,7 @@ SAMPLE_SUFFIXES = (".csv", ".parquet")
 def check_samples_path(path, option: str = "--samples-out"):
     """Refuse a samples file before any work: a folder that exists, ``.csv`` or
     ``.parquet``, and for Parquet an installed pyarrow."""
-    from ironbark_opt.cli_common import check_output_path
+    from ironbark_opt.cli.common import check_output_path
 
     p = check_output_path(path, option, SAMPLE_SUFFIXES)
     if p is not None and p.suffix.lower() == ".parquet":
@@ -123,7 +123,7 @@ def check_samples_path(path, option: str = "--samples-out"):
 def write_samples(dispersion, path) -> None:
     """Every Monte Carlo sample (parameters and results, one row each) to
     ``path``: CSV, or Parquet (pyarrow) by the extension.  Not atomic by
-    itself: the command line writes through ``cli_common.atomic_write``
+    itself: the command line writes through ``ironbark_opt.cli.common.atomic_write``
     (whose temporary file keeps the extension)."""
     df = dispersion.to_dataframe()
     if Path(path).suffix.lower() == ".parquet":

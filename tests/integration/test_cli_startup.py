@@ -12,9 +12,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = str(ROOT / "examples/calisto/calisto.toml")
-HEAVY = ("scipy.interpolate", "pandas", "requests", "ssl", "matplotlib", "ironbark_opt.cli_motor",
-         "ironbark_opt.cli_weather", "ironbark_opt.cli_aero", "ironbark_opt.cli_optimise",
-         "ironbark_opt.cli_analysis", "ironbark_opt.cli_ork", "ironbark_opt.cli_window", "panair")
+HEAVY = ("scipy.interpolate", "pandas", "requests", "ssl", "matplotlib", "ironbark_opt.cli.motor",
+         "ironbark_opt.cli.weather", "ironbark_opt.cli.aero", "ironbark_opt.cli.optimise",
+         "ironbark_opt.cli.analysis", "ironbark_opt.cli.ork", "ironbark_opt.cli.window", "panair")
 
 PROBE = """
 import json, sys

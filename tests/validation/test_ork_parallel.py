@@ -68,7 +68,7 @@ def test_each_stored_simulation(index):
 
 
 def test_ork_info_lists_the_boosters():
-    from ironbark_opt.cli_ork import ork_summary
+    from ironbark_opt.cli.ork import ork_summary
     info = ork_summary(read_ork(ORK))
     names = [(s["name"], s.get("instances")) for s in info["stage_list"]]
     print(names)

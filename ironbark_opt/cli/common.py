@@ -218,7 +218,7 @@ def apply_forecast(setup, forecast=None, site=None, time=None, **_file_options):
     """``setup`` flying the ``--forecast`` profile (unchanged without one)."""
     if forecast is None:
         return setup
-    from ironbark_opt.cli_optimise import forecast_atmosphere
+    from ironbark_opt.cli.optimise import forecast_atmosphere
     return forecast_atmosphere(setup, forecast, site, time)
 
 

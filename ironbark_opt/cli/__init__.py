@@ -1,7 +1,7 @@
 """The ``ironbark`` command.
 
-Sub-commands live in ``cli_<topic>.py`` modules and are registered here
-*lazily*: ``ironbark simulate`` imports ``cli_simulate`` only, so a command
+Sub-commands live in the modules ``ironbark_opt/cli/<topic>.py`` (shared options in ``common.py``) and are registered here
+*lazily*: ``ironbark simulate`` imports ``cli/simulate.py`` only, so a command
 never pays for the imports of the others (``requests``/``ssl`` for
 ``motor``/``weather``, the panel solver for ``aero``, IPOPT set-up for
 ``ballast``).  ``ironbark --help`` lists every command and therefore imports
@@ -14,22 +14,22 @@ import importlib
 import click
 
 from ironbark_opt import __version__
-from ironbark_opt.cli_common import OneLineErrorGroup
+from ironbark_opt.cli.common import OneLineErrorGroup
 
 #: every module that contributes commands (its ``COMMANDS`` list)
-_MODULES = ("cli_simulate", "cli_optimise", "cli_analysis", "cli_ork", "cli_motor", "cli_weather", "cli_aero",
-            "cli_flight", "cli_window")
+_MODULES = ("simulate", "optimise", "analysis", "ork", "motor", "weather", "aero",
+            "flight", "window")
 #: the module that defines a command, so one command imports one module; a command
 #: not listed here is still found (every module in ``_MODULES`` is then imported)
-_HOME = {"simulate": "cli_simulate", "ballast": "cli_optimise", "sensitivity": "cli_analysis",
-         "montecarlo": "cli_analysis", "ork": "cli_ork", "motor": "cli_motor", "weather": "cli_weather",
-         "aero": "cli_aero", "flight": "cli_flight", "calibrate": "cli_flight",
-         "window": "cli_window"}
+_HOME = {"simulate": "simulate", "ballast": "optimise", "sensitivity": "analysis",
+         "montecarlo": "analysis", "ork": "ork", "motor": "motor", "weather": "weather",
+         "aero": "aero", "flight": "flight", "calibrate": "flight",
+         "window": "window"}
 
 
 class LazyGroup(OneLineErrorGroup):
     """A click group that imports a sub-command's module on first use (and reports
-    usage errors in one line, :class:`~ironbark_opt.cli_common.OneLineErrorGroup`)."""
+    usage errors in one line, :class:`~ironbark_opt.cli.common.OneLineErrorGroup`)."""
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
@@ -53,9 +53,9 @@ class LazyGroup(OneLineErrorGroup):
             return
         self._loaded.add(module_name)
         try:
-            module = importlib.import_module(f"ironbark_opt.{module_name}")
+            module = importlib.import_module(f"ironbark_opt.cli.{module_name}")
         except ModuleNotFoundError as err:
-            if err.name == f"ironbark_opt.{module_name}":
+            if err.name == f"ironbark_opt.cli.{module_name}":
                 return                   # an optional command module not in this checkout
             raise
         for cmd in module.COMMANDS:

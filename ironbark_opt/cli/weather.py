@@ -10,8 +10,8 @@ import numpy as np
 from ironbark_opt.atmosphere.base import wind_to_speed_direction
 from ironbark_opt.atmosphere.levels import ProfileColumns
 from ironbark_opt.atmosphere.sites import all_sites, get_site
-from ironbark_opt.cli_common import emit, handle_errors, json_option
-from ironbark_opt.cli_motor import offline_mode
+from ironbark_opt.cli.common import emit, handle_errors, json_option
+from ironbark_opt.cli.motor import offline_mode
 from ironbark_opt.errors import InputError
 
 
@@ -92,7 +92,7 @@ def get_cmd(model, site, lat_deg, lon_deg, elevation_m, time_iso, station, path,
             csv_path, plot_path, out_path, offline, as_json):
     """Fetch a profile over a site and print it (optionally CSV, JSON, plot)."""
     from ironbark_opt.atmosphere.ncss import parse_iso
-    from ironbark_opt.cli_common import PLOT_SUFFIXES, atomic_write, check_output_path
+    from ironbark_opt.cli.common import PLOT_SUFFIXES, atomic_write, check_output_path
     check_output_path(csv_path, "--csv", (".csv", ".txt"))
     check_output_path(plot_path, "--plot", PLOT_SUFFIXES)
     check_output_path(out_path, "--out", (".json", ".csv"))
@@ -136,7 +136,7 @@ def get_cmd(model, site, lat_deg, lon_deg, elevation_m, time_iso, station, path,
     if out_path:
         if str(out_path).lower().endswith(".json"):
             import json
-            from ironbark_opt.cli_common import _clean
+            from ironbark_opt.cli.common import _clean
             text = json.dumps(_clean(result), indent=2)
             atomic_write(out_path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
         else:

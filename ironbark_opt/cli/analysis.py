@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
+from ironbark_opt.cli.common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
                                      atmosphere_label, atmosphere_options, atmosphere_summary, atomic_write,
                                      atomic_write_text,
                                      check_output_path, emit, handle_errors, json_option, table_option)

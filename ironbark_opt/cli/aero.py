@@ -18,7 +18,7 @@ from pathlib import Path
 import click
 import numpy as np
 
-from ironbark_opt.cli_common import check_output_path, emit, handle_errors, json_option
+from ironbark_opt.cli.common import check_output_path, emit, handle_errors, json_option
 from ironbark_opt.errors import InputError
 
 
@@ -136,7 +136,7 @@ def plot(table, out, as_json):
     import matplotlib.pyplot as plt
 
     from ironbark_opt.aero.table import AeroTable
-    from ironbark_opt.cli_common import PLOT_SUFFIXES, atomic_write
+    from ironbark_opt.cli.common import PLOT_SUFFIXES, atomic_write
     out = Path(out) if out else Path(table).with_suffix(".png")
     check_output_path(out, "--out", PLOT_SUFFIXES)
     t = AeroTable.load(table)

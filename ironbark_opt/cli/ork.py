@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.cli.common import emit, handle_errors, json_option
 
 
 def ork_summary(doc, config: str | None = None) -> dict:

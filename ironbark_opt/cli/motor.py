@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from ironbark_opt.cli_common import emit, handle_errors, json_option
+from ironbark_opt.cli.common import emit, handle_errors, json_option
 from ironbark_opt.errors import InputError
 from ironbark_opt.motors import thrustcurve as tc
 
@@ -114,7 +114,7 @@ def check_designation(designation: str) -> None:
 @handle_errors
 def get_cmd(designation, manufacturer, fmt, output_dir, plot, offline, as_json):
     """Download DESIGNATION's data file, write it and print a summary."""
-    from ironbark_opt.cli_common import check_output_path
+    from ironbark_opt.cli.common import check_output_path
     check_designation(designation)
     check_output_path(output_dir, "--output-dir", directory=True)
     with offline_mode(offline):

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, atmosphere_label, atmosphere_load_kwargs,
+from ironbark_opt.cli.common import (PLOT_SUFFIXES, atmosphere_label, atmosphere_load_kwargs,
                                      atmosphere_options, atmosphere_summary, atomic_write, check_output_path, emit,
                                      handle_errors, json_option, table_option)
 from ironbark_opt.optimise.motor_choice import OBJECTIVES
@@ -137,11 +137,7 @@ def ballast_command(rocket, target, motors, objective, robust, spec_path, band, 
         from ironbark_opt.optimise.airbrakes import solve_airbrakes
         solution = solve_airbrakes(setup, target, variable=solve_for)
         check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
-        _plot(setup, solution, plot_path)
-        result = solution.to_dict()
-        _card(setup, solution, result, **card)
-        result["atmosphere"] = flown
-        emit(result, as_json, solution.summary() + "\n" + flown_line)
+        _report(setup, solution, plot_path, card, flown, flown_line, as_json)
         return
     kwargs = dict(mass_max=max_ballast, ballast_x=ballast_x, free_position=free_position,
                   min_rail_speed=min_rail_speed, min_margin=min_margin)
@@ -190,16 +186,20 @@ def ballast_command(rocket, target, motors, objective, robust, spec_path, band, 
         check_ascent_stability(setup, {"ballast_mass": solution.values["ballast_kg"],
                                        "ballast_x": solution.values["ballast_x_m"]},
                                allow_unstable=allow_unstable)
-        _plot(setup, solution, plot_path)
-        result = solution.to_dict()
-        result["atmosphere"] = flown
-        emit(result, as_json, solution.summary() + "\n" + flown_line)
+        _report(setup, solution, plot_path, None, flown, flown_line, as_json)
         return
     solution = solve_ballast(setup, target, **kwargs)
     check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
+    _report(setup, solution, plot_path, card, flown, flown_line, as_json)
+
+
+def _report(setup, solution, plot_path, card, flown, flown_line, as_json):
+    """Plot, flight card (``card``: the ``_card`` options, or None) and the printed or
+    JSON result of one solution."""
     _plot(setup, solution, plot_path)
     result = solution.to_dict()
-    _card(setup, solution, result, **card)
+    if card is not None:
+        _card(setup, solution, result, **card)
     result["atmosphere"] = flown
     emit(result, as_json, solution.summary() + "\n" + flown_line)
 

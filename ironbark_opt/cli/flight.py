@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import click
 
-from ironbark_opt.cli_common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
+from ironbark_opt.cli.common import (PLOT_SUFFIXES, atomic_write, check_output_path, emit, handle_errors,
                                      json_option, table_option)
 
 _FILE_OUT = click.Path(dir_okay=False, writable=True)
