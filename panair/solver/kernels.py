@@ -17,8 +17,8 @@ which another NumPy build or CPU could change.
 
 Measured (Kestrel, 2352 / 3072 panels, CPU s per Mach number, loaded 2-core
 machine): subsonic setup 5.4 -> ~2.5 s (LU 0.5 s), supersonic 50.8 -> 11-14 s
-(LU 0.7-1.1 s); the one-off compile of both kernels ~4 s CPU (a first build
-with an empty cache 69.9 s CPU against 65.7 s with it).
+(LU 0.7-1.1 s); the one-off compile of both kernels 4-11 s CPU (first build
+with an empty cache 69.9 / 69.2 s CPU against 65.7 / 58.1 s with it, two runs).
 
 Why Numba (and not CasADi code generation or a C kernel built with the
 system compiler):
