@@ -12,7 +12,7 @@ is high.  The first build with an empty kernel cache (Numba compiling, cache in 
 temp dir) is timed separately.
 
 Run:  python benchmarks/bench_aero_build.py [--baseline CHECKOUT | --commit 7804b72]
-          [--runs 1] [--flights] [--per-mach] [--no-kestrel]
+          [--runs 1] [--flights [--flight astra ...]] [--per-mach] [--no-kestrel]
 
 Without ``--baseline`` the tree of ``--commit`` is extracted with ``git archive``
 into a temp dir.  Each Kestrel build takes minutes on a loaded 2-core machine
@@ -95,9 +95,11 @@ def kestrel(baseline: Path, runs: int, workers: int, tmp: Path) -> None:
     print(f"  tables: {_tables_agree(tmp / 'here0', tmp / 'baseline0')}")
 
 
-def flights(workers: int, tmp: Path) -> None:
-    print(f"aero build of the five flights' rocket_geometry.toml ({workers} workers; goal <= 60 s):")
+def flights(workers: int, tmp: Path, only=None) -> None:
+    print(f"aero build of the flights' rocket_geometry.toml ({workers} workers; goal <= 60 s):")
     for f in sorted((ROOT / "tests/data/flights").glob("*/rocket_geometry.toml")):
+        if only and f.parent.name not in only:
+            continue
         load = _load()
         rel = str(f.relative_to(ROOT))
         try:
@@ -174,6 +176,7 @@ def main():
     ap.add_argument("--runs", type=int, default=1, help="Kestrel pairs (here, baseline)")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--flights", action="store_true", help="also the five flights (slow)")
+    ap.add_argument("--flight", action="append", help="only this flight (repeatable)")
     ap.add_argument("--per-mach", action="store_true", help="also the in-process per-Mach split")
     ap.add_argument("--no-kestrel", action="store_true", help="skip the Kestrel comparison")
     args = ap.parse_args()
@@ -192,7 +195,7 @@ def main():
         if args.per_mach:
             per_mach()
         if args.flights:
-            flights(args.workers, tmp)
+            flights(args.workers, tmp, args.flight)
 
 
 if __name__ == "__main__":
