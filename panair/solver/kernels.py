@@ -84,7 +84,10 @@ def use_compiled(backend: str) -> bool:
 
 # ---------------------------------------------------------------- Laplace (subsonic)
 
-@njit(cache=True, nogil=True)
+# error_model="numpy": a float division by zero gives inf/nan as in the NumPy reference
+# (which masks such entries afterwards) instead of raising ZeroDivisionError (Numba's
+# default "python" model; it stopped a real rocket's supersonic build)
+@njit(cache=True, nogil=True, error_model="numpy")
 def _tri_angle(Rx, Ry, Rz, r, i, j, k, dij, dik, djk):
     """2 x signed solid angle term of triangle (i, j, k): Van Oosterom & Strackee eq. (8)."""
     num = (Rx[i] * (Ry[j] * Rz[k] - Rz[j] * Ry[k])
@@ -97,7 +100,7 @@ def _tri_angle(Rx, Ry, Rz, r, i, j, k, dij, dik, djk):
     return 2.0 * math.atan2(num, den)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model="numpy")
 def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, S, add):
     """Doublet ``D`` and source ``S`` influence (m, n) of flat quads on points (m, 3).
 
@@ -151,7 +154,7 @@ def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, 
 
 # ---------------------------------------------------------------- supersonic source
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model="numpy")
 def _f_at(tau, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta):
     """F(tau) of :func:`panair.solver.supersonic_influence._antiderivative`, the
     constants of the edge (a_safe ... beta, see :func:`_edge_integral`) given."""
@@ -188,7 +191,7 @@ def _f_at(tau, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta):
     return j0 - hk
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model="numpy")
 def _edge_integral(ta, tb, a, b, c, H2):
     """F(tb) - F(ta), F' = sqrt(R) / (R + H2), R = a tau^2 + b tau + c: the scalar
     form of :func:`panair.solver.supersonic_influence._antiderivative` (same
@@ -208,7 +211,7 @@ def _edge_integral(ta, tb, a, b, c, H2):
             - _f_at(ta, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model="numpy")
 def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all, eq_all,
           nup_all, nuq_all, a_all):
     """Scalar form of :func:`panair.solver.supersonic_influence._pair_potential`."""
@@ -264,7 +267,7 @@ def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_
     return -integral / _TWO_PI
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, error_model="numpy")
 def supersonic_source(points, cen, rho, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL,
                       ep_all, eq_all, nup_all, nuq_all, a_all, out):
     """Potential per unit source strength (m, n) into ``out`` (zeros outside each
