@@ -66,7 +66,3 @@ class LazyGroup(OneLineErrorGroup):
 @click.version_option(__version__, prog_name="ironbark")
 def main():
     """Ironbark-Opt: apogee prediction, ballast and motor choice for high-power rockets."""
-
-
-if __name__ == "__main__":
-    main()
