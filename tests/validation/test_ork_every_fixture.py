@@ -3,15 +3,11 @@ configuration within 10 % of the apogee OpenRocket stored for it (issue #14).
 
 Flown as ``simulate`` does: the .ork's geometry, mass build-up, motor files
 (tests/data/ork/motors), launch conditions of that simulation, OpenRocket's
-launch-rod travel for the rail exit, the empirical aerodynamics.  Every case
-prints its numbers.  Two kinds of case are marked, each with its reason:
+launch-rod travel for the rail exit, the empirical aerodynamics, the motor's
+ejection delay (a "too short delay" simulation deploys on the way up, as
+OpenRocket's stored events show: marked in the printout).  Every case prints
+its numbers.  One kind of case is skipped, with its reason:
 
-- OpenRocket's stored events deploy a recovery device *before* its apogee
-  (the "too short delay" simulations: the motor's ejection charge fires on the
-  way up).  Ironbark-Opt does not fly the motor's ejection delay yet (helper H4's
-  part of issue #14), so these are expected to improve once it does; they are
-  xfail (non-strict: most of them pass anyway, shown as XPASS) exactly when
-  OpenRocket's stored deployment precedes its stored apogee event.
 - A simulation without a motor configuration (``configid`` empty, OpenRocket
   1.1.3 files whose simulations kept no motor) has nothing to fly: skipped,
   the reason asserted from the file.
@@ -26,7 +22,7 @@ import pytest
 from ironbark_opt.openrocket import read_ork
 
 DATA = Path(__file__).parents[1] / "data" / "ork"
-H4 = "expected to improve with the motor ejection delay (helper H4, issue #14): OpenRocket deploys before apogee"
+EARLY = "OpenRocket deploys before apogee (motor ejection delay)"
 
 
 def _early_deployment(sim) -> bool:
@@ -45,8 +41,6 @@ def _cases():
             if not sim.config_id:
                 marks.append(pytest.mark.skip(reason="the simulation names no motor configuration "
                                                      "(empty configid): nothing to fly"))
-            elif _early_deployment(sim):
-                marks.append(pytest.mark.xfail(reason=H4, strict=False))
             out.append(pytest.param(path.name, i, marks=marks, id=f"{path.stem}-{i + 1}"))
     return out
 
@@ -68,5 +62,5 @@ def test_stored_simulation_apogee(name, index):
     err = flight.apogee_agl / stored - 1
     early = _early_deployment(sim)
     print(f"{name} / {sim.name}: {flight.apogee_agl:.1f} m, OpenRocket {stored:.1f} m ({100 * err:+.2f} %)"
-          + (f"  [{H4}]" if early else ""))
+          + (f"  [{EARLY}]" if early else ""))
     assert abs(err) < 0.10
