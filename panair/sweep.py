@@ -513,10 +513,10 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                                 pressure_rule=pressure_rule, checkpoint_dir=checkpoint_dir)
         m_sup, p_sup = np.array([m_anchor]), np.array([float(c1["CA"][0, 0])])
         anchor_solved = [m_anchor]
-    fin_planform = sum(int(f.count) * f.span * float(np.mean(f.chord_at(np.linspace(0, 1, 65))))
-                       for f in geometry.fins)
-    p0 = zero_lift_pressure(mach, m_cr, sub_fn, m_sup, p_sup,
-                            lock_area_ratio=fin_planform / sref if fin_planform > 0 else 1.0)
+    # each fin set rises from its own critical Mach number on its own exposed planform
+    lock_sets = [(m_i, int(f.count) * f.span * float(np.mean(f.chord_at(np.linspace(0, 1, 65)))) / sref)
+                 for m_i, f in zip(m_cr_fins, geometry.fins)]
+    p0 = zero_lift_pressure(mach, m_cr, sub_fn, m_sup, p_sup, lock_sets=lock_sets)
     ca_p = p0[:, None] + d_ca
     n_a = len(alpha)
     ones = np.ones((1, n_a))

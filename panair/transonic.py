@@ -115,7 +115,7 @@ def fin_critical_mach(fin) -> float:
 
 
 def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
-                       lock_area_ratio: float = 1.0):
+                       lock_area_ratio: float = 1.0, lock_sets=None):
     """Zero-lift pressure CA P(M) [-] at ``mach_out`` [-] (see module docstring).
 
     Parameters
@@ -136,6 +136,12 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
         rise is dCA = 20 (M - M_cr)^4 * ratio (Lock; Mason ch. 7), above M_dd
         the monotone fairing to the sonic value.
 
+    lock_sets : sequence of (float, float), optional
+        Each fin set's own critical Mach number [-] and exposed planform over the
+        reference area [-]: the rise is then the sum of Lock's law of every set from
+        its own critical Mach number (a section property: a thick camera pod meshed as
+        a fin set must not put the main fins' planform into drag rise at its Mach
+        number); replaces ``lock_area_ratio``.
     Returns
     -------
     ndarray [-], same length as ``mach_out``.
@@ -158,7 +164,11 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
     step = LOCK_OFFSET / 4.0
     m_lock = mach_cr + step * np.arange(1, int(np.ceil((LOCK_MACH_MAX - mach_cr) / step)) + 1)
     m_lock = m_lock[m_lock <= LOCK_MACH_MAX + 1e-12]
-    p_lock = np.asarray(subsonic(m_lock), float) + lock_rise(m_lock, mach_cr, lock_area_ratio)
+    if lock_sets is None:
+        rise = lock_rise(m_lock, mach_cr, lock_area_ratio)
+    else:
+        rise = sum((lock_rise(m_lock, m_i, a_i) for m_i, a_i in lock_sets), 0.0 * m_lock)
+    p_lock = np.asarray(subsonic(m_lock), float) + rise
     p_sonic = float(p_sup[0])
     below = p_lock < p_sonic
     below[:min(4, len(below))] = True                 # always through M_dd = M_cr + 0.108

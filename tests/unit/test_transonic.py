@@ -68,3 +68,18 @@ def test_zero_lift_pressure_is_subsonic_then_monotone_rise_then_supersonic():
     assert p_dd == pytest.approx(sub(m_dd) + 20 * LOCK_OFFSET ** 4 * 2.0, rel=1e-9)
     with pytest.raises(ValueError):
         zero_lift_pressure([0.9], 0.8, sub, [], [])
+
+
+def test_each_fin_set_rises_from_its_own_critical_mach():
+    """Lock's law is a section property: with two fin sets (a thick camera pod meshed as
+    fins, M_cr 0.42, and the main fins, M_cr 0.95) the rise below Mach 0.95 is the pod's
+    alone, on the pod's planform, not the main fins' planform from the pod's M_cr."""
+    sub = lambda m: 0.0 * np.asarray(m, float)
+    m_sup, p_sup = np.array([1.2, 1.5]), np.array([0.5, 0.45])
+    sets = [(0.42, 0.11), (0.95, 6.0)]
+    p = zero_lift_pressure([0.6, 0.8], 0.42, sub, m_sup, p_sup, lock_sets=sets)
+    # (monotone cubic between Lock points spaced LOCK_OFFSET / 4: within 1 %)
+    assert p[0] == pytest.approx(20 * 0.18 ** 4 * 0.11, rel=1e-2)
+    assert p[1] < 20 * 0.38 ** 4 * 0.11 * 1.05 + 1e-12          # on the Lock points' fairing
+    old = zero_lift_pressure([0.6], 0.42, sub, m_sup, p_sup, lock_area_ratio=6.11)
+    assert old[0] > 20 * p[0]                                     # what one shared M_cr gave
