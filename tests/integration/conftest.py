@@ -153,20 +153,26 @@ def closed_port_url():
     return f"http://127.0.0.1:{port}"
 
 
-@pytest.fixture
-def net_env(tmp_path, monkeypatch):
-    """Isolated cache and config, fast retries; returns the cache directory."""
-    cache = tmp_path / "cache"
+def isolate_network(monkeypatch, tmp: Path, url: str = "http://127.0.0.1:9") -> Path:
+    """Isolated cache and config, fast retries, every service endpoint at ``url`` (by
+    default the discard port: never the internet); returns the cache directory."""
+    cache = tmp / "cache"
     monkeypatch.setenv("IRONBARK_CACHE_DIR", str(cache))
-    monkeypatch.setenv("IRONBARK_CONFIG", str(tmp_path / "no-config.toml"))
+    monkeypatch.setenv("IRONBARK_CONFIG", str(tmp / "no-config.toml"))
     monkeypatch.setenv("IRONBARK_HTTP_RETRIES", "1")
     monkeypatch.setenv("IRONBARK_HTTP_BACKOFF", "0")
     monkeypatch.setenv("IRONBARK_HTTP_TIMEOUT", "2")
     monkeypatch.delenv("IRONBARK_OFFLINE", raising=False)
     for var in ("IRONBARK_THRUSTCURVE_URL", "IRONBARK_THREDDS_URL", "IRONBARK_NOMADS_URL",
                 "IRONBARK_GFS_ARCHIVE_URL", "IRONBARK_RAP_ARCHIVE_URL", "IRONBARK_UWYO_URL"):
-        monkeypatch.setenv(var, "http://127.0.0.1:9")   # discard port: never the internet
+        monkeypatch.setenv(var, url)
     return cache
+
+
+@pytest.fixture
+def net_env(tmp_path, monkeypatch):
+    """Isolated cache and config, fast retries; returns the cache directory."""
+    return isolate_network(monkeypatch, tmp_path)
 
 
 def cache_files(cache: Path) -> list[Path]:

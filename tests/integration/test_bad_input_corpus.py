@@ -19,6 +19,7 @@ from click.testing import CliRunner
 
 from ironbark_opt.cli import main
 from bad_input_cases import CASES, DATA
+from conftest import isolate_network
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -59,15 +60,7 @@ def _prepare(tmp: Path, case) -> list[str]:
 
 
 def _network(case, monkeypatch, tmp: Path, closed_port_url, loopback_factory):
-    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp / "cache"))
-    monkeypatch.setenv("IRONBARK_CONFIG", str(tmp / "no-config.toml"))
-    monkeypatch.setenv("IRONBARK_HTTP_RETRIES", "1")
-    monkeypatch.setenv("IRONBARK_HTTP_BACKOFF", "0")
-    monkeypatch.setenv("IRONBARK_HTTP_TIMEOUT", "2")
-    monkeypatch.delenv("IRONBARK_OFFLINE", raising=False)
-    for var in ("IRONBARK_THRUSTCURVE_URL", "IRONBARK_THREDDS_URL", "IRONBARK_NOMADS_URL",
-                "IRONBARK_GFS_ARCHIVE_URL", "IRONBARK_RAP_ARCHIVE_URL", "IRONBARK_UWYO_URL"):
-        monkeypatch.setenv(var, closed_port_url)
+    isolate_network(monkeypatch, tmp, closed_port_url)
     if case.net and case.net.startswith("loopback:"):
         server = loopback_factory()
         fault = case.net.split(":", 1)[1]
