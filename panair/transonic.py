@@ -115,7 +115,7 @@ def fin_critical_mach(fin) -> float:
 
 
 def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
-                       lock_area_ratio: float = 1.0, lock_sets=None):
+                       lock_sets=()):
     """Zero-lift pressure CA P(M) [-] at ``mach_out`` [-] (see module docstring).
 
     Parameters
@@ -130,18 +130,15 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
         ``mach_out`` is <= ``mach_cr``.
     p_sup : 1-D array [-]
         Their zero-lift pressure CA.
-    lock_area_ratio : float [-]
-        Area Lock's law is referred to (the exposed fin planform) over the
-        reference area: between M_cr and M_dd = M_cr + :data:`LOCK_OFFSET` the
-        rise is dCA = 20 (M - M_cr)^4 * ratio (Lock; Mason ch. 7), above M_dd
-        the monotone fairing to the sonic value.
-
     lock_sets : sequence of (float, float), optional
         Each fin set's own critical Mach number [-] and exposed planform over the
         reference area [-]: the rise is then the sum of Lock's law of every set from
         its own critical Mach number (a section property: a thick camera pod meshed as
         a fin set must not put the main fins' planform into drag rise at its Mach
-        number); replaces ``lock_area_ratio``.
+        number).  Between the critical Mach number and drag divergence the rise is
+        the sum of ``20 (M - M_cr,i)^4 * ratio_i`` (Lock; Mason ch. 7), above it the
+        monotone fairing to the sonic value.
+
     Returns
     -------
     ndarray [-], same length as ``mach_out``.
@@ -164,10 +161,7 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
     step = LOCK_OFFSET / 4.0
     m_lock = mach_cr + step * np.arange(1, int(np.ceil((LOCK_MACH_MAX - mach_cr) / step)) + 1)
     m_lock = m_lock[m_lock <= LOCK_MACH_MAX + 1e-12]
-    if lock_sets is None:
-        rise = lock_rise(m_lock, mach_cr, lock_area_ratio)
-    else:
-        rise = sum((lock_rise(m_lock, m_i, a_i) for m_i, a_i in lock_sets), 0.0 * m_lock)
+    rise = sum((lock_rise(m_lock, m_i, a_i) for m_i, a_i in lock_sets), 0.0 * m_lock)
     p_lock = np.asarray(subsonic(m_lock), float) + rise
     p_sonic = float(p_sup[0])
     below = p_lock < p_sonic

@@ -145,10 +145,9 @@ def streamlined_fin_ca(fins, mach, reference_area: float) -> np.ndarray:
     frontal = fins.thickness * fins.span * fins.count / reference_area
     edge = np.cos(np.arctan2(fins.sweep_length, fins.span)) ** 2 * frontal
     sonic = float(rounded_le(1.0)) * edge
-    rise = np.minimum(lock_rise(m, m_cr, fins.count * fins.planform_area() / reference_area),
-                      sonic)
-    at_max = float(np.minimum(lock_rise(LOCK_MACH_MAX, m_cr, fins.count * fins.planform_area()
-                                        / reference_area), sonic))
+    planform = fins.count * fins.planform_area() / reference_area
+    rise = np.minimum(lock_rise(m, m_cr, planform), sonic)
+    at_max = float(np.minimum(lock_rise(LOCK_MACH_MAX, m_cr, planform), sonic))
     ramp = at_max + (sonic - at_max) * (m - LOCK_MACH_MAX) / (1.0 - LOCK_MACH_MAX)
     return np.where(m >= 1.0, rounded_le(m) * edge, np.where(m > LOCK_MACH_MAX, ramp, rise))
 

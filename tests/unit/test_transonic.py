@@ -64,7 +64,7 @@ def test_zero_lift_pressure_is_subsonic_then_monotone_rise_then_supersonic():
     assert right == pytest.approx(left, abs=0.02)
     # Lock's fourth-power law up to M_dd = M_cr + 0.108 (on the given area ratio)
     m_dd = 0.7 + LOCK_OFFSET
-    p_dd = zero_lift_pressure([m_dd], 0.7, sub, m_sup, p_sup, lock_area_ratio=2.0)[0]
+    p_dd = zero_lift_pressure([m_dd], 0.7, sub, m_sup, p_sup, lock_sets=[(0.7, 2.0)])[0]
     assert p_dd == pytest.approx(sub(m_dd) + 20 * LOCK_OFFSET ** 4 * 2.0, rel=1e-9)
     with pytest.raises(ValueError):
         zero_lift_pressure([0.9], 0.8, sub, [], [])
@@ -81,5 +81,5 @@ def test_each_fin_set_rises_from_its_own_critical_mach():
     # (monotone cubic between Lock points spaced LOCK_OFFSET / 4: within 1 %)
     assert p[0] == pytest.approx(20 * 0.18 ** 4 * 0.11, rel=1e-2)
     assert p[1] < 20 * 0.38 ** 4 * 0.11 * 1.05 + 1e-12          # on the Lock points' fairing
-    old = zero_lift_pressure([0.6], 0.42, sub, m_sup, p_sup, lock_area_ratio=6.11)
+    old = zero_lift_pressure([0.6], 0.42, sub, m_sup, p_sup, lock_sets=[(0.42, 6.11)])
     assert old[0] > 20 * p[0]                                     # what one shared M_cr gave
