@@ -19,8 +19,13 @@ import numpy as np
 
 __all__ = ["DEFAULT_MACH", "DEFAULT_ALPHA_DEG", "rocket_table", "default_mach_grid"]
 
-#: Default Mach grid: subsonic solutions, supersonic ones to Mach 2 (the gap is faired)
-DEFAULT_MACH = (0.05, 0.2, 0.35, 0.5, 0.6, 0.7, 0.8, 0.9, 1.2, 1.5, 2.0)
+#: Default Mach grid: subsonic solutions to 0.9, supersonic ones from 1.2 to 2, and the
+#: transonic gap sampled every 0.05 (no panel solution there: the zero-lift drag is the
+#: transonic model of :mod:`panair.transonic`, the angle-of-attack increments the
+#: bridge's).  Without the gap points the flight's spline ran straight from Mach 0.9 to
+#: 1.2 under the modelled rise to the sonic value (APEX I, peak Mach 1.1: table CA at
+#: Mach 1.0 about 0.28 where the model says 0.40).
+DEFAULT_MACH = (0.05, 0.2, 0.35, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 1.0, 1.05, 1.1, 1.2, 1.5, 2.0)
 #: Default angles of attack solved by the panel method [deg]; 30-90 deg are added by
 #: the high-angle model (panair.sweep.ALPHA_EXTEND_DEG)
 DEFAULT_ALPHA_DEG = (0.0, 2.0, 4.0, 6.0, 8.0, 12.0, 16.0, 20.0)

@@ -19,7 +19,7 @@ def _common(func):
     options = [
         click.option("--rail-exit", type=click.Choice(RAIL_EXIT_RULES), default="forward_button", show_default=True,
                      help="When the rocket counts as off the rail."),
-        click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files)."),
+        click.option("--config", "config", type=str, help="Motor configuration, or a stored simulation by name (OpenRocket files; its launch conditions too)."),
         table_option,
         click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg] (nominal point)."),
         click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m]."),

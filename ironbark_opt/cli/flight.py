@@ -13,7 +13,7 @@ def _log_options(func):
     for option in reversed([
         click.option("--format", "log_format", help="Force the log reader (default: detected from content)."),
         click.option("--columns", help="Generic CSV column map, e.g. 'time=T:ms,altitude=Alt:ft'."),
-        click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files)."),
+        click.option("--config", "config", type=str, help="Motor configuration, or a stored simulation by name (OpenRocket files; its launch conditions too)."),
         table_option,
         click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
                      help="Apply a calibration file (from 'ironbark calibrate --output')."),

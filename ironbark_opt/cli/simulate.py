@@ -20,7 +20,7 @@ from ironbark_opt.vehicle import RAIL_EXIT_RULES
               help="When the rocket counts as off the rail.")
 @click.option("--ballast", "ballast_kg", type=float, help="Ballast mass [kg].")
 @click.option("--ballast-x", "ballast_x_m", type=float, help="Ballast position, aft of the nose tip [m].")
-@click.option("--config", "config", type=str, help="Motor configuration (OpenRocket files).")
+@click.option("--config", "config", type=str, help="Motor configuration, or a stored simulation by name (OpenRocket files; its launch conditions too).")
 @table_option
 @click.option("--calibration", "calibration_path", type=click.Path(dir_okay=False),
               help="Apply a calibration file (from 'ironbark calibrate --output').")

@@ -154,7 +154,7 @@ def _aero_table_path(rocket: Rocket, doc: OrkDocument) -> Path:
 def rocket_file(doc: OrkDocument, config: str | None = None):
     """A :class:`~ironbark_opt.rocket.toml_io.RocketFile` for one motor configuration."""
     from ironbark_opt.rocket.toml_io import RocketFile
-    cfg = doc.config(config)
+    cfg, sim = doc.config_and_simulation(config)
     check_flyable(doc, cfg)
     # The motor lit at launch first; others of the stage (air-start) by ignition time.
     ordered = sorted(cfg.motors, key=lambda me: me[1].ignition_delay)
@@ -164,7 +164,6 @@ def rocket_file(doc: OrkDocument, config: str | None = None):
         spec = dataclasses.replace(spec, airstart=tuple(
             (s, float(e.ignition_delay)) for s, (_, e) in zip(specs[1:], ordered[1:])))
     rocket = geometry(doc)
-    sim = doc.simulation_for(cfg)
     launch = sim.launch if sim is not None else LaunchSpec()
     aero = AeroSpec(table=_aero_table_path(rocket, doc))
     return RocketFile(rocket, spec, aero, launch, recovery(doc, cfg.config_id), BallastSpec(), doc.path)

@@ -49,8 +49,38 @@ class OrkDocument:
         return ormass.rocket_mass(self.rocket.stages)
 
     def config(self, wanted: str | None = None) -> MotorConfig:
-        """A motor configuration by id / name / label / designation (default: the file's)."""
-        return select_config(self.configs, wanted, self.path)
+        """A motor configuration by id / name / label / designation, or the configuration
+        of the stored simulation named ``wanted`` (default: the file's)."""
+        return self.config_and_simulation(wanted)[0]
+
+    def config_and_simulation(self, wanted: str | None = None) -> tuple[MotorConfig, OrkSimulation | None]:
+        """(motor configuration, the stored simulation whose launch conditions it flies).
+
+        ``wanted`` is a configuration (id / name / label / designation: the first stored
+        simulation of that configuration gives the launch conditions) or the exact name of
+        a stored simulation (its configuration and its conditions: a design file often
+        keeps one simulation per launch site, e.g. "Michiana - FT1", "Pence FT2").
+        """
+        if wanted is not None:
+            named = [s for s in self.simulations if s.name.strip().lower() == wanted.strip().lower()]
+            if named:
+                sim = named[0]
+                for c in self.configs:
+                    if c.config_id == sim.config_id and c.motors:
+                        return c, sim
+                from ironbark_opt.errors import InputError
+                raise InputError(f"simulation {sim.name!r} flies motor configuration {sim.config_id!r}, which "
+                                 "has no motor in the design", source=self.path, field="config")
+        from ironbark_opt.errors import InputError
+        try:
+            cfg = select_config(self.configs, wanted, self.path)
+        except InputError as err:
+            if wanted is None or not self.simulations:
+                raise
+            names = ", ".join(repr(s.name) for s in self.simulations[:8])
+            raise InputError(f"{err.message}; or a stored simulation: {names}", source=self.path,
+                             field="config") from None
+        return cfg, self.simulation_for(cfg)
 
     def simulation_for(self, config: MotorConfig) -> OrkSimulation | None:
         """The first simulation flying ``config`` (else the first one), or None."""

@@ -165,7 +165,7 @@ def parallel_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
                          field=doc.rocket.pods[1].path)
     pod = doc.rocket.pods[0]
     count = pod.geo["instances"]
-    cfg = doc.config(config)
+    cfg, sim = doc.config_and_simulation(config)
     (m_c, e_c), booster_motor = _mounts(doc, cfg, pod)
     event, delay = separation(pod, cfg.config_id)
     if event not in _MOTOR_EVENTS + _NEVER:
@@ -173,7 +173,6 @@ def parallel_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
                          f"or ejection + delay)", source=doc.path, field=pod.path)
     separates = booster_motor is not None and event in _MOTOR_EVENTS and not (
         event == "ejection" and booster_motor[1].delay is None)
-    sim = doc.simulation_for(cfg)
     launch = sim.launch if sim is not None else LaunchSpec()
     spec_c = _motor_spec(doc, m_c, e_c)
     spec = spec_c

@@ -103,10 +103,9 @@ def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
     from ironbark_opt.rocket.toml_io import RocketFile
     from ironbark_opt.staged_vehicle import assemble_two_stage
 
-    cfg = doc.config(config)
+    cfg, sim = doc.config_and_simulation(config)
     ev = stage_events(doc, cfg)
     spec_b, spec_s = _motor_spec(doc, *ev["booster"]), _motor_spec(doc, *ev["sustainer"])
-    sim = doc.simulation_for(cfg)
     launch = sim.launch if sim is not None else LaunchSpec()
     files = {}
     for key, stages, spec in (("stack", (0, 1), spec_b), ("sustainer", (0,), spec_s)):

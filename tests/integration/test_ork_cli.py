@@ -135,3 +135,26 @@ def test_simulate_two_stage_json(env):
     assert out["separation_time_s"] == pytest.approx(1.535, abs=1e-3)
     assert out["booster_landing_time_s"] > out["booster_apogee_time_s"] > out["separation_time_s"]
     assert out["landing_time_s"] > out["apogee_time_s"]
+
+
+def test_config_names_a_stored_simulation(monkeypatch, tmp_path):
+    """``--config "Pence FT2"`` flies that stored simulation's launch conditions (the FT2 design
+    keeps six simulations of one configuration at three sites): its site elevation, rail angle
+    and wind, read from the file, differ from the first simulation's ("Midland"); a name
+    that is neither a configuration nor a simulation is refused, listing both."""
+    from ironbark_opt.openrocket import load_ork, read_ork
+    tel = Path(__file__).parents[1] / "data" / "telemetry"
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(Path(__file__).parents[1] / "data" / "thrustcurve" / "openrocket-15.03"))
+    ork = tel / "nustars-2026-ft2-telemega.ork"
+    doc = read_ork(ork)
+    pence, midland = doc.simulation("Pence FT2").launch, doc.simulation("Midland").launch
+    assert pence.site_elevation != midland.site_elevation
+    rf = load_ork(ork, config="pence ft2")                    # case-insensitive, as configurations
+    assert rf.launch == pence
+    assert load_ork(ork).launch == midland                    # default: the configuration's first simulation
+    assert rf.motor.designation == load_ork(ork).motor.designation
+    res = CliRunner().invoke(main, ["simulate", str(ork), "--config", "Pence", "--json"])
+    assert res.exit_code == 2
+    assert "'Pence FT2'" in res.output and "M1315W" in res.output and "Traceback" not in res.output

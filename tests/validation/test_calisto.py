@@ -49,7 +49,8 @@ def test_calisto_on_its_panel_table_vs_rocketpy():
     alone by panair.rocket_table: panel solution, zero-lift drag model with the
     transonic rise, base drag, cross-flow; friction at the flight's Reynolds number;
     NACA 0012 fins of one thickness as RocketPy's model) against RocketPy's run on
-    its own drag curves.  Goal (issue 13): 2 %.  Measured (session 4): -6.2 %; the
+    its own drag curves.  Goal (issue 13): 2 %.  Measured (session 4): -6.2 %, (session 6,
+    table with the transonic gap sampled) -6.0 %; the
     table's zero-lift CA is above the curve: +11 % subsonic (friction + base), and
     from Mach 0.75 the fins' transonic rise (critical Mach 0.66 from Korn's equation
     with t/c = 0.14 of one thickness over a tapered fin) and their supersonic wave

@@ -1,0 +1,67 @@
+"""Logged flights with their OpenRocket design (issue 13): the apogee from the .ork
+geometry alone (panel table built by ``ironbark aero build``), flown with the stored
+simulation of that flight (its launch site, rail, wind) and the design's motor, against
+the altimeter's logged apogee, next to the prediction OpenRocket stored in the same file.
+
+- NUSTARS FT1 (AeroTech L1940X, sim "Michiana - FT1"): goal, ours closer than OpenRocket's.
+- NUSTARS FT2 (AeroTech M1315W, sim "Pence FT2") and Imperial College APEX I (Cesaroni
+  I216, sim "Final Sim (?)", the one the team's launch-day commit names): their motors are
+  not in the fixtures; the thrust curves are OpenRocket 15.03's own copies
+  (tests/data/thrustcurve/openrocket-15.03, digests equal to the ones the .ork files
+  store).  Printed; bounded at the measured state so a regression fails (session 6:
+  FT2 +2.5 % vs OpenRocket's +2.9 %; APEX +5.2 % vs OpenRocket's +1.0 %, not closer: its
+  boost runs through Mach 0.95-1.1 where our transonic rise starts at the fins' critical
+  Mach 0.88 and OpenRocket's nose-cone rise from about Mach 0.7).
+
+Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
+FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).
+Slow (a whole table build per rocket, 40-90 s idle).
+"""
+import json
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+DATA = Path(__file__).parents[1] / "data"
+TEL = DATA / "telemetry"
+MOTORS = DATA / "thrustcurve" / "openrocket-15.03"
+
+#: name: (.ork, stored simulation, logged apogee [m AGL], bound on |ours/logged - 1| or
+#: None for "closer than OpenRocket's stored prediction")
+FLIGHTS = {
+    "FT1": ("nustars-2026-ft1-telemega.ork", "Michiana - FT1", 2198.6, None),
+    "FT2": ("nustars-2026-ft2-telemega.ork", "Pence FT2", 2669.0, 0.04),
+    "APEX": ("icl-apex1-pnut.ork", "Final Sim (?)", 2845.3, 0.07),
+}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", FLIGHTS)
+def test_logged_flight_from_ork_geometry(name, tmp_path, monkeypatch):
+    from ironbark_opt.cli import main
+    from ironbark_opt.openrocket import read_ork
+    ork_name, sim_name, logged, bound = FLIGHTS[name]
+    ork = TEL / ork_name
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(MOTORS))
+    stem = tmp_path / name
+    res = CliRunner().invoke(main, ["aero", "build", str(ork), "--out", str(stem), "--no-progress", "--json"])
+    assert res.exit_code == 0, res.output
+    flown = {}
+    for label, extra in (("panel", ["--table", f"{stem}.csv"]), ("empirical", [])):
+        res = CliRunner().invoke(main, ["simulate", str(ork), "--config", sim_name, *extra, "--json"])
+        assert res.exit_code == 0, res.output
+        flown[label] = json.loads(res.output[res.output.index("{"):])["apogee_agl_m"]
+    stored = read_ork(ork).simulation(sim_name).summary["apogee_m"]
+    ours = flown["panel"]
+    e_ours, e_emp, e_or = ours / logged - 1, flown["empirical"] / logged - 1, stored / logged - 1
+    print(f"\n{name} ({sim_name}): logged {logged:.1f} m; ours (panel table from the .ork) {ours:.1f} m "
+          f"({100 * e_ours:+.2f} %); ours empirical {flown['empirical']:.1f} m ({100 * e_emp:+.2f} %); "
+          f"OpenRocket stored {stored:.1f} m ({100 * e_or:+.2f} %); "
+          f"{'closer' if abs(e_ours) < abs(e_or) else 'NOT closer'} than OpenRocket")
+    if bound is None:
+        assert abs(e_ours) < abs(e_or)
+    else:
+        assert abs(e_ours) < bound
