@@ -28,7 +28,8 @@ from ironbark_opt import params
 from ironbark_opt.dynamics import rhs as rhs_mod
 from ironbark_opt.dynamics.frames import launch_quaternion, rail_direction_l, rotation_matrix
 from ironbark_opt.dynamics import ejection, model_cache
-from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, jit_mode, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.integrator import (cached_library, compile_function, grid_fractions, jit_mode,
+                                                library_member, phase_trajectory, rk4_step)
 from ironbark_opt.errors import InputError, SolverError
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
@@ -90,6 +91,8 @@ class FlightModel:
 
     #: length of the parameter vector ``p`` the Functions take
     n_p = params.SIZE
+    #: the Functions loaded from the model's compiled library (empty: none, see _compile_phases)
+    _lib: dict = {}
 
     def __init__(self, setup, steps: Steps | None = None, *, jit=False):
         self.setup = setup
@@ -119,18 +122,56 @@ class FlightModel:
                                           **{f"step_{ph}": f for ph, f in self.step.items()},
                                           **{f"traj_{ph}": f for ph, f in self.trajectory.items()},
                                           "apex": self._apex, "discretisation": self.discretisation()})
-        for ph in ("rail", "boost", "coast"):
-            self._run[ph] = self._compiled(self.trajectory[ph])
-        self._apogee_run = self._compiled(self._apogee_event)
+        self._compile_phases()
+
+    def _library_key(self) -> str | None:
+        if self._key is None:
+            return None
+        return hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
 
     def _compiled(self, func: ca.Function) -> ca.Function:
         """``func`` compiled as ``self.jit`` asks (the VM Function itself when it says no)."""
         if not self.jit:
             return func
-        key = None
-        if self._key is not None:
-            key = hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
-        return compile_function(func, key=key, background=self.jit == "auto")
+        return compile_function(func, key=self._library_key(), background=self.jit == "auto")
+
+    #: the Functions compiled into the model's one library with the ascent
+    _LIBRARY = ("traj_rail", "traj_boost", "traj_coast", "apogee_event", "outputs_rail", "outputs_boost",
+                "outputs_coast")
+
+    def _compile_phases(self) -> None:
+        """Compile as ``self.jit`` asks: the ascent (:mod:`~ironbark_opt.dynamics.ascent`),
+        the phase trajectories, the apogee event and the phases' output rows, all in
+        one library (their RK4 steps generated and compiled once), loaded from the
+        cache when it has it.  Without a cache key: one library per Function."""
+        self.__dict__.pop("_ascent_cache", None)
+        self.__dict__.pop("_out_cache", None)
+        self._lib = {}
+        key = self._library_key()
+        if not self.jit or key is None or not self._FUSED:
+            for ph in ("rail", "boost", "coast"):
+                self._run[ph] = self._compiled(self.trajectory[ph])
+            self._apogee_run = self._compiled(self._apogee_event)
+            return
+        lib = cached_library("ascent", key)
+        if lib is None:
+            from ironbark_opt.dynamics.ascent import ascent_function
+            vm = ascent_function(self)
+            self.__dict__["_ascent_vm"] = (self.discretisation(), vm)
+            members = {"traj_rail": self.trajectory["rail"], "traj_boost": self.trajectory["boost"],
+                       "traj_coast": self.trajectory["coast"], "apogee_event": self._apogee_event,
+                       **{f"outputs_{ph}": self._outputs_base(ph) for ph in ("rail", "boost", "coast")}}
+            lib = compile_function(vm, key=key, background=self.jit == "auto",
+                                   extra=lambda: [members[n] for n in self._LIBRARY])
+            if lib is vm:                       # compiling in the background (or failed): the VM meanwhile
+                for ph in ("rail", "boost", "coast"):
+                    self._run[ph] = self.trajectory[ph]
+                self._apogee_run = self._apogee_event
+                return
+        self._lib = {"ascent": lib, **{name: library_member(name, "ascent", key) for name in self._LIBRARY}}
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = self._lib[f"traj_{ph}"]
+        self._apogee_run = self._lib["apogee_event"]
 
     def _choose_grid(self, p):
         """Fix the RK4 grid from the *nominal* flight (deterministic: the same
@@ -158,8 +199,7 @@ class FlightModel:
         self.n_boost, self.n_coast, self.coast_grading = int(n_boost), int(n_coast), float(coast_grading)
         self._set_trajectory("boost", self.n_boost)
         self._set_trajectory("coast", self.n_coast)
-        for ph in ("rail", "boost", "coast"):
-            self._run[ph] = self._compiled(self.trajectory[ph])
+        self._compile_phases()
 
     @property
     def coast_fractions(self) -> np.ndarray:
@@ -435,6 +475,47 @@ class FlightModel:
         if p.size != self.n_p:
             raise InputError(f"parameter vector has {p.size} entries, expected {self.n_p}")
         _refuse_controller(self.setup)
+        a = self._ascent_fused(p) if self._FUSED else None
+        if a is None:
+            a = self._ascent_phased(p)
+        return self._finish(p, a, descent)
+
+    #: fly the ascent through :mod:`~ironbark_opt.dynamics.ascent` (one Function) when it applies
+    _FUSED = True
+
+    def _ascent_runner(self):
+        """The :class:`~ironbark_opt.dynamics.ascent.AscentRunner` of this model's grid
+        (built on first use; compiled as ``self.jit`` asks, like the phase Functions)."""
+        cache = self.__dict__.setdefault("_ascent_cache", {})
+        key = self.discretisation()
+        if key not in cache:
+            from ironbark_opt.dynamics.ascent import AscentRunner, ascent_function
+            cache.clear()
+            func = self._lib.get("ascent")
+            if func is None:
+                grid, vm = self.__dict__.get("_ascent_vm", (None, None))
+                func = vm if grid == key else self._compiled(ascent_function(self))
+            cache[key] = AscentRunner(func)
+        return cache[key]
+
+    def _ascent_fused(self, p) -> dict | None:
+        """The ascent from one call of the ascent Function, or None where it does not
+        apply (then :meth:`_ascent_phased` flies it, and raises what it finds)."""
+        from ironbark_opt.dynamics.ascent import RAIL_TOL_M
+        if p[params.index("rail_length")] - self.setup.rail_exit_offset <= 0:
+            return None
+        r = self._ascent_runner()(p)
+        if r is None or not (r["g_bracket"] > 0 and abs(r["g_rail"]) < RAIL_TOL_M and r["t_rail"] < r["t_burnout"]
+                             and r["vz_burnout"] > 0 and r["found"] == 1):
+            return None
+        k, t_b = int(r["k"]), r["t_burnout"]
+        return dict(x0=r["x0"], t_r=r["t_rail"], X_rail=r["X_rail"], t_b=t_b, X_boost=r["X_boost"],
+                    span=r["t_end"] - t_b, k=k, X_coast=r["X_coast"][:, :k], t_a=r["t_k"] + r["h"],
+                    x_a=r["x_apogee"])
+
+    def _ascent_phased(self, p) -> dict:
+        """The ascent phase by phase from Python (rail-exit secant, boost, coast to a
+        horizon, apogee refinement): the path :meth:`_ascent_fused` falls back to."""
         x0 = self._x0(p)
         t_r, X_rail = self._rail_exit(p)
         t_b = self.burn_time(p)
@@ -469,8 +550,16 @@ class FlightModel:
         vz_k = vz_b if k == 0 else vz[k - 1]
         h0 = dt_c * vz_k / (vz_k - vz[k]) if vz_k != vz[k] else dt_c
         h, x_a = self._apogee_run(x_k, t_k, h0, dt_c, p)
-        h, x_a = float(h), np.array(x_a).ravel()
-        t_a = t_k + h
+        return dict(x0=x0, t_r=t_r, X_rail=X_rail, t_b=t_b, X_boost=X_boost, span=span, k=k,
+                    X_coast=X_coast[:, :k], t_a=t_k + float(h), x_a=np.array(x_a).ravel())
+
+    def _finish(self, p, a: dict, descent: bool) -> dict:
+        """``run``'s result from an ascent (:meth:`_ascent_fused` or :meth:`_ascent_phased`):
+        samples, events, an ejection before apogee, the descent."""
+        x0, t_r, X_rail, t_b, X_boost = a["x0"], a["t_r"], a["X_rail"], a["t_b"], a["X_boost"]
+        k, span, t_a, x_a = a["k"], a["span"], a["t_a"], a["x_a"]
+        x_r, x_b = X_rail[:, -1].copy(), X_boost[:, -1]
+        fr = self.coast_fractions_of(p)
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
         t_e = ejection.ejection_time(self.setup, p)
         head_t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], self.boost_times(t_r, t_b, p)])
@@ -487,7 +576,7 @@ class FlightModel:
             phase = np.array(head_phase + ph_s)
         else:
             t = np.concatenate([head_t, t_b + span * fr[1:k + 1], [t_a]])
-            x = np.hstack([head_x, X_coast[:, :k], x_a[:, None]])
+            x = np.hstack([head_x, a["X_coast"][:, :k], x_a[:, None]])
             phase = np.array(head_phase + ["coast"] * (k + 1))
             if t_e is not None:
                 extra = dict(t_ejection=t_e)
@@ -775,6 +864,12 @@ class FlightModel:
             y[:, idx] = np.array(self._outputs_function(ph, idx.size)(x[:, idx], t[idx][None, :], P))
         return y
 
+    def _outputs_base(self, phase: str) -> ca.Function:
+        """``(x, t, p) -> y``: the output rows of ``phase``'s right-hand side at one sample."""
+        f = self.rhs[phase] if phase in self.rhs else self._stage_rhs[phase]
+        xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
+        return ca.Function(f"outputs_{phase}", [xs, ts, ps], [f(xs, ts, ps)[1]])
+
     def _outputs_function(self, phase: str, n: int) -> ca.Function:
         """``(X (13 x n), t (1 x n), p) -> Y``: the phase's output rows mapped over n
         samples; built once per (phase, n) and kept (``simulate`` calls it on every run)."""
@@ -782,10 +877,8 @@ class FlightModel:
         if (phase, n) not in cache:
             base = cache.get(phase)
             if base is None:
-                f = self.rhs[phase] if phase in self.rhs else self._stage_rhs[phase]
-                xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
-                base = ca.Function(f"outputs_{phase}", [xs, ts, ps], [f(xs, ts, ps)[1]])
-                if phase in self.rhs:
+                base = self._lib.get(f"outputs_{phase}") or self._outputs_base(phase)
+                if phase in self.rhs and not self._lib:
                     base = self._compiled(base)
                 cache[phase] = base
             cache[(phase, n)] = base.map(n)
