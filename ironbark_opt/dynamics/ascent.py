@@ -43,7 +43,7 @@ RAIL_TOL_M = 1e-10
 #: rail passes after the bracketing one (conditional: only the needed ones run)
 RAIL_ITERATIONS = 8
 #: coast steps per conditionally evaluated chunk
-COAST_CHUNK = 25
+COAST_CHUNK = 10
 #: rows of the ``ev`` output
 EV = ("t_rail", "g_rail", "g_bracket", "t_burnout", "vz_burnout", "t_end", "k", "found", "t_k", "h", "rail_passes")
 G0 = 9.80665   # [m/s^2] standard gravity, the horizon's first guess (as in model.py)

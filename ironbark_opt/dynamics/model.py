@@ -33,6 +33,7 @@ from ironbark_opt.dynamics.integrator import (cached_library, compile_function, 
 from ironbark_opt.errors import InputError, SolverError
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
+_PHASES = np.array(["rail", "boost", "coast"])
 #: |lambda| dt allowed for RK4 (its stability region reaches 2.78 on the real
 #: and 2.83 on the imaginary axis); chosen by the RK4-vs-DOP853 validation.
 STABLE_LAMBDA_DT = 1.5
@@ -203,8 +204,14 @@ class FlightModel:
 
     @property
     def coast_fractions(self) -> np.ndarray:
-        """Coast step boundaries as fractions of the coast (n_coast + 1)."""
-        return grid_fractions(self.n_coast, self.coast_grading)
+        """Coast step boundaries as fractions of the coast (n_coast + 1; read-only)."""
+        key = (self.n_coast, self.coast_grading)
+        cached = self.__dict__.get("_coast_fractions")
+        if cached is None or cached[0] != key:
+            fr = grid_fractions(self.n_coast, self.coast_grading)
+            fr.flags.writeable = False
+            self.__dict__["_coast_fractions"] = cached = (key, fr)
+        return cached[1]
 
     def coast_fractions_of(self, p) -> np.ndarray:
         """Coast step boundaries of the flight with parameters ``p`` (the model's
@@ -564,9 +571,9 @@ class FlightModel:
         t_e = ejection.ejection_time(self.setup, p)
         head_t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], self.boost_times(t_r, t_b, p)])
         head_x = np.hstack([x0[:, None], X_rail, X_boost])
-        head_phase = ["rail"] * (n_r + 1) + ["boost"] * n_b
         extra = {}
         if t_e is not None and t_e < t_a:       # the chute opens on the way up
+            head_phase = ["rail"] * (n_r + 1) + ["boost"] * n_b
             t_s, X_s, ph_s, t_a2, x_a2 = ejection.fly_early(self, x_b, t_b, t_e, p, t_a)
             extra = dict(t_ejection=t_e, x_ejection=X_s[:, ph_s.index("ejected") - 1],
                          ejection_before_apogee_s=t_a - t_e, coasting_apogee_agl_m=float(x_a[2]))
@@ -577,7 +584,7 @@ class FlightModel:
         else:
             t = np.concatenate([head_t, t_b + span * fr[1:k + 1], [t_a]])
             x = np.hstack([head_x, a["X_coast"][:, :k], x_a[:, None]])
-            phase = np.array(head_phase + ["coast"] * (k + 1))
+            phase = np.repeat(_PHASES, (n_r + 1, n_b, k + 1))
             if t_e is not None:
                 extra = dict(t_ejection=t_e)
         out = dict(t=t, x=x, phase=phase, p=p, t_rail=t_r, t_burnout=t_b, t_apogee=t_a,
