@@ -94,6 +94,8 @@ class FlightModel:
     n_p = params.SIZE
     #: the Functions loaded from the model's compiled library (empty: none, see _compile_phases)
     _lib: dict = {}
+    #: True when the model compiles into one library (loaded, or being compiled in the background)
+    _one_library = False
 
     def __init__(self, setup, steps: Steps | None = None, *, jit=False):
         self.setup = setup
@@ -149,7 +151,8 @@ class FlightModel:
         self.__dict__.pop("_out_cache", None)
         self._lib = {}
         key = self._library_key()
-        if not self.jit or key is None or not self._FUSED:
+        self._one_library = bool(self.jit) and key is not None and self._FUSED
+        if not self._one_library:
             for ph in ("rail", "boost", "coast"):
                 self._run[ph] = self._compiled(self.trajectory[ph])
             self._apogee_run = self._compiled(self._apogee_event)
@@ -885,7 +888,7 @@ class FlightModel:
             base = cache.get(phase)
             if base is None:
                 base = self._lib.get(f"outputs_{phase}") or self._outputs_base(phase)
-                if phase in self.rhs and not self._lib:
+                if phase in self.rhs and not self._one_library:    # else: in the model's library
                     base = self._compiled(base)
                 cache[phase] = base
             cache[(phase, n)] = base.map(n)
