@@ -98,9 +98,13 @@ def _first(mask: ca.MX) -> ca.MX:
     return mask * (ca.cumsum(mask, 1) == 1)
 
 
-def ascent_function(model) -> ca.Function:
+def ascent_function(model, batch: bool = False) -> ca.Function:
     """``p -> (ev, x0, X_rail, X_boost, X_coast, x_apogee)``, see the module doc;
-    ``ev`` holds the scalars named in :data:`EV`."""
+    ``ev`` holds the scalars named in :data:`EV`.
+
+    ``batch``: ``ascent_batch``, ``p -> (ev, x_rail, x_apogee)`` from the same
+    graph (the same operations, so the same numbers to the bit), mapped over
+    the samples of ``FlightModel.run_batch`` without their trajectories."""
     nr, nc = model.steps.n_rail, model.n_coast
     p = ca.MX.sym("p", model.n_p)
     x0, e = model._launch(p)
@@ -161,8 +165,21 @@ def ascent_function(model) -> ca.Function:
     h0 = ca.if_else(vz_k != vz_end, dt_c * vz_k / ca.if_else(vz_k != vz_end, vz_k - vz_end, 1.0), dt_c)
     h, x_a = model._apogee_event(x_k, t_k, h0, dt_c, p)
     ev = ca.vertcat(t_r, g_a, g_hi, burn, vz_b, t_end, kc, found, t_k, h, n)
+    if batch:
+        return ca.Function("ascent_batch", [p], [ev, x_r, x_a], ["p"], ["ev", "x_rail", "x_apogee"])
     return ca.Function("ascent", [p], [ev, x0, X_a, X_b, X_c, x_a],
                        ["p"], ["ev", "x0", "X_rail", "X_boost", "X_coast", "x_apogee"])
+
+
+def applies(ev) -> np.ndarray:
+    """Where the ascent Function's answer stands (``ev``: rows of :data:`EV`, one column
+    per sample): the bracket held, the rail-exit residual met its tolerance, the
+    rail was left before burnout, the rocket climbs at burnout, apogee is within
+    the horizon.  Elsewhere the phase-by-phase path flies (and reports errors)."""
+    ev = np.asarray(ev, dtype=float).reshape(len(EV), -1)
+    r = dict(zip(EV, ev))
+    return ((r["g_bracket"] > 0) & (np.abs(r["g_rail"]) < RAIL_TOL_M) & (r["t_rail"] < r["t_burnout"])
+            & (r["vz_burnout"] > 0) & (r["found"] == 1))
 
 
 class AscentRunner:

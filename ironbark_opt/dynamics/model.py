@@ -139,8 +139,8 @@ class FlightModel:
         return compile_function(func, key=self._library_key(), background=self.jit == "auto")
 
     #: the Functions compiled into the model's one library with the ascent
-    _LIBRARY = ("traj_rail", "traj_boost", "traj_coast", "apogee_event", "outputs_rail", "outputs_boost",
-                "outputs_coast")
+    _LIBRARY = ("ascent_batch", "traj_rail", "traj_boost", "traj_coast", "apogee_event", "outputs_rail",
+                "outputs_boost", "outputs_coast")
 
     def _compile_phases(self) -> None:
         """Compile as ``self.jit`` asks: the ascent (:mod:`~ironbark_opt.dynamics.ascent`),
@@ -162,7 +162,8 @@ class FlightModel:
             from ironbark_opt.dynamics.ascent import ascent_function
             vm = ascent_function(self)
             self.__dict__["_ascent_vm"] = (self.discretisation(), vm)
-            members = {"traj_rail": self.trajectory["rail"], "traj_boost": self.trajectory["boost"],
+            members = {"ascent_batch": self._ascent_batch_vm(),
+                       "traj_rail": self.trajectory["rail"], "traj_boost": self.trajectory["boost"],
                        "traj_coast": self.trajectory["coast"], "apogee_event": self._apogee_event,
                        **{f"outputs_{ph}": self._outputs_base(ph) for ph in ("rail", "boost", "coast")}}
             lib = compile_function(vm, key=key, background=self.jit == "auto",
@@ -508,15 +509,24 @@ class FlightModel:
             cache[key] = AscentRunner(func)
         return cache[key]
 
+    def _ascent_batch_vm(self) -> ca.Function:
+        """``ascent_batch`` (:func:`~ironbark_opt.dynamics.ascent.ascent_function`) in the VM,
+        built once per grid."""
+        grid, func = self.__dict__.get("_ascent_batch", (None, None))
+        if grid != self.discretisation():
+            from ironbark_opt.dynamics.ascent import ascent_function
+            func = ascent_function(self, batch=True)
+            self.__dict__["_ascent_batch"] = (self.discretisation(), func)
+        return func
+
     def _ascent_fused(self, p) -> dict | None:
         """The ascent from one call of the ascent Function, or None where it does not
         apply (then :meth:`_ascent_phased` flies it, and raises what it finds)."""
-        from ironbark_opt.dynamics.ascent import RAIL_TOL_M
+        from ironbark_opt.dynamics.ascent import EV, applies
         if p[params.index("rail_length")] - self.setup.rail_exit_offset <= 0:
             return None
         r = self._ascent_runner()(p)
-        if r is None or not (r["g_bracket"] > 0 and abs(r["g_rail"]) < RAIL_TOL_M and r["t_rail"] < r["t_burnout"]
-                             and r["vz_burnout"] > 0 and r["found"] == 1):
+        if r is None or not applies([r[k] for k in EV])[0]:
             return None
         k, t_b = int(r["k"]), r["t_burnout"]
         return dict(x0=r["x0"], t_r=r["t_rail"], X_rail=r["X_rail"], t_b=t_b, X_boost=r["X_boost"],
@@ -633,10 +643,10 @@ class FlightModel:
     def run_batch(self, P: np.ndarray, *, descent: bool = False) -> dict:
         """Fly many parameter vectors at once to apogee (the Monte Carlo path).
 
-        The same phase Functions as :meth:`run`, mapped over the columns of
-        ``P`` (``params.SIZE`` x n, threads); the events (rail exit, apogee)
-        are solved for all samples together by the same methods as in
-        :meth:`run`.
+        The ascent Function of :meth:`run` mapped over the columns of ``P``
+        (``params.SIZE`` x n, threads), so each sample equals its single run to
+        the bit; the motor-slot model maps the phase Functions and solves the
+        events for all samples together by the same methods as in :meth:`run`.
 
         Returns
         -------
@@ -649,6 +659,48 @@ class FlightModel:
         if P.ndim != 2 or P.shape[0] != self.n_p:
             raise InputError(f"parameter matrix must be {self.n_p} x n, got {P.shape}")
         _refuse_controller(self.setup)
+        if self._FUSED:
+            return self._run_batch_fused(P, descent)
+        return self._run_batch_phased(P, descent)
+
+    def _run_batch_fused(self, P: np.ndarray, descent: bool) -> dict:
+        """:meth:`run_batch` by ``ascent_batch`` mapped over the samples (threads): the
+        very Function of :meth:`run`, so a sample and its single run agree to the bit;
+        the samples it does not apply to fly one by one through :meth:`run`."""
+        from ironbark_opt.dynamics.ascent import EV, applies
+        n = P.shape[1]
+        if np.any(P[params.index("rail_length")] - self.setup.rail_exit_offset <= 0):
+            raise InputError("rail length shorter than the nozzle-to-guide distance in some samples",
+                             field="rail_length")
+        cache = self.__dict__.setdefault("_map_cache", {})
+        if ("ascent_batch", n) not in cache:
+            base = self._lib.get("ascent_batch") or self._ascent_batch_vm()
+            cache[("ascent_batch", n)] = base.map(n, "thread", 2)
+        ev, x_r, x_a = (np.array(v) for v in cache[("ascent_batch", n)](P))
+        r = dict(zip(EV, ev))
+        t_r, burn, t_apo = r["t_rail"], r["t_burnout"], r["t_k"] + r["h"]
+        singles = {}
+        for j in np.nonzero(~applies(ev))[0]:
+            singles[j] = one = self.run(P[:, j])
+            t_r[j], burn[j], t_apo[j] = one["t_rail"], one["t_burnout"], one["t_apogee"]
+            x_r[:, j], x_a[:, j] = one["x_rail"], one["x_apogee"]
+        redo = {}
+        t_e = ejection.ejection_time(self.setup, P)
+        if t_e is not None:                   # each sample in its own ejection case
+            for j in np.nonzero((t_e < t_apo) | (descent & (t_e > t_apo)))[0]:
+                redo[j] = one = self.run(P[:, j], descent=descent)
+                x_a[:, j], t_apo[j] = one["x_apogee"], one["t_apogee"]
+        out = dict(apogee_agl=x_a[2], t_apogee=t_apo, t_rail=t_r,
+                   rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
+        if descent:
+            out.update(self.descend(x_a, t_apo, P))
+            for j, one in redo.items():
+                out["t_landing"][j], out["x_landing"][:, j] = one["t_landing"], one["x_landing"]
+        return out
+
+    def _run_batch_phased(self, P: np.ndarray, descent: bool) -> dict:
+        """:meth:`run_batch` phase by phase (the motor-slot model's path): the phase
+        Functions mapped, the rail-exit secant and apogee refinement vectorised."""
         n = P.shape[1]
         idx = np.arange(n)
         x0, e = (np.array(v) for v in self._mapped("launch", n)(P))
