@@ -2,7 +2,7 @@
 
 :meth:`FlightModel.run <ironbark_opt.dynamics.model.FlightModel.run>` used to
 drive the phases from Python (18 Function calls with NumPy conversions, the
-rail phase integrated once per secant iterate).  :func:`ascent_function`
+rail phase integrated once per secant iterate).  :func:`ascent_functions`
 builds the same sequence as one Function of ``p`` (compiled with the model's
 other libraries), so a run is one call plus NumPy bookkeeping:
 
@@ -98,13 +98,12 @@ def _first(mask: ca.MX) -> ca.MX:
     return mask * (ca.cumsum(mask, 1) == 1)
 
 
-def ascent_function(model, batch: bool = False) -> ca.Function:
-    """``p -> (ev, x0, X_rail, X_boost, X_coast, x_apogee)``, see the module doc;
-    ``ev`` holds the scalars named in :data:`EV`.
-
-    ``batch``: ``ascent_batch``, ``p -> (ev, x_rail, x_apogee)`` from the same
-    graph (the same operations, so the same numbers to the bit), mapped over
-    the samples of ``FlightModel.run_batch`` without their trajectories."""
+def ascent_functions(model) -> tuple[ca.Function, ca.Function]:
+    """``(ascent, ascent_batch)``: ``p -> (ev, x0, X_rail, X_boost, X_coast, x_apogee)``
+    (see the module doc; ``ev`` holds the scalars named in :data:`EV`) and, from
+    the same graph (the same operations, so the same numbers to the bit),
+    ``p -> (ev, x_rail, x_apogee)``, mapped over the samples of
+    ``FlightModel.run_batch`` without their trajectories."""
     nr, nc = model.steps.n_rail, model.n_coast
     p = ca.MX.sym("p", model.n_p)
     x0, e = model._launch(p)
@@ -165,10 +164,9 @@ def ascent_function(model, batch: bool = False) -> ca.Function:
     h0 = ca.if_else(vz_k != vz_end, dt_c * vz_k / ca.if_else(vz_k != vz_end, vz_k - vz_end, 1.0), dt_c)
     h, x_a = model._apogee_event(x_k, t_k, h0, dt_c, p)
     ev = ca.vertcat(t_r, g_a, g_hi, burn, vz_b, t_end, kc, found, t_k, h, n)
-    if batch:
-        return ca.Function("ascent_batch", [p], [ev, x_r, x_a], ["p"], ["ev", "x_rail", "x_apogee"])
-    return ca.Function("ascent", [p], [ev, x0, X_a, X_b, X_c, x_a],
-                       ["p"], ["ev", "x0", "X_rail", "X_boost", "X_coast", "x_apogee"])
+    return (ca.Function("ascent", [p], [ev, x0, X_a, X_b, X_c, x_a],
+                        ["p"], ["ev", "x0", "X_rail", "X_boost", "X_coast", "x_apogee"]),
+            ca.Function("ascent_batch", [p], [ev, x_r, x_a], ["p"], ["ev", "x_rail", "x_apogee"]))
 
 
 def applies(ev) -> np.ndarray:

@@ -159,10 +159,8 @@ class FlightModel:
             return
         lib = cached_library("ascent", key)
         if lib is None:
-            from ironbark_opt.dynamics.ascent import ascent_function
-            vm = ascent_function(self)
-            self.__dict__["_ascent_vm"] = (self.discretisation(), vm)
-            members = {"ascent_batch": self._ascent_batch_vm(),
+            vm, vm_batch = self._ascent_vm()
+            members = {"ascent_batch": vm_batch,
                        "traj_rail": self.trajectory["rail"], "traj_boost": self.trajectory["boost"],
                        "traj_coast": self.trajectory["coast"], "apogee_event": self._apogee_event,
                        **{f"outputs_{ph}": self._outputs_base(ph) for ph in ("rail", "boost", "coast")}}
@@ -500,24 +498,23 @@ class FlightModel:
         cache = self.__dict__.setdefault("_ascent_cache", {})
         key = self.discretisation()
         if key not in cache:
-            from ironbark_opt.dynamics.ascent import AscentRunner, ascent_function
+            from ironbark_opt.dynamics.ascent import AscentRunner
             cache.clear()
             func = self._lib.get("ascent")
             if func is None:
-                grid, vm = self.__dict__.get("_ascent_vm", (None, None))
-                func = vm if grid == key else self._compiled(ascent_function(self))
+                func = self._ascent_vm()[0] if self._one_library else self._compiled(self._ascent_vm()[0])
             cache[key] = AscentRunner(func)
         return cache[key]
 
-    def _ascent_batch_vm(self) -> ca.Function:
-        """``ascent_batch`` (:func:`~ironbark_opt.dynamics.ascent.ascent_function`) in the VM,
-        built once per grid."""
-        grid, func = self.__dict__.get("_ascent_batch", (None, None))
+    def _ascent_vm(self) -> tuple[ca.Function, ca.Function]:
+        """``(ascent, ascent_batch)`` of :func:`~ironbark_opt.dynamics.ascent.ascent_functions`
+        in the VM, built once per grid."""
+        grid, funcs = self.__dict__.get("_ascent_vm_funcs", (None, None))
         if grid != self.discretisation():
-            from ironbark_opt.dynamics.ascent import ascent_function
-            func = ascent_function(self, batch=True)
-            self.__dict__["_ascent_batch"] = (self.discretisation(), func)
-        return func
+            from ironbark_opt.dynamics.ascent import ascent_functions
+            funcs = ascent_functions(self)
+            self.__dict__["_ascent_vm_funcs"] = (self.discretisation(), funcs)
+        return funcs
 
     def _ascent_fused(self, p) -> dict | None:
         """The ascent from one call of the ascent Function, or None where it does not
@@ -674,7 +671,9 @@ class FlightModel:
                              field="rail_length")
         cache = self.__dict__.setdefault("_map_cache", {})
         if ("ascent_batch", n) not in cache:
-            base = self._lib.get("ascent_batch") or self._ascent_batch_vm()
+            base = self._lib.get("ascent_batch")
+            if base is None:
+                base = self._ascent_vm()[1] if self._one_library else self._compiled(self._ascent_vm()[1])
             cache[("ascent_batch", n)] = base.map(n, "thread", 2)
         ev, x_r, x_a = (np.array(v) for v in cache[("ascent_batch", n)](P))
         r = dict(zip(EV, ev))
