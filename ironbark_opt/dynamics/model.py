@@ -678,11 +678,15 @@ class FlightModel:
         ev, x_r, x_a = (np.array(v) for v in cache[("ascent_batch", n)](P))
         r = dict(zip(EV, ev))
         t_r, burn, t_apo = r["t_rail"], r["t_burnout"], r["t_k"] + r["h"]
-        singles = {}
         for j in np.nonzero(~applies(ev))[0]:
-            singles[j] = one = self.run(P[:, j])
+            one = self.run(P[:, j])
             t_r[j], burn[j], t_apo[j] = one["t_rail"], one["t_burnout"], one["t_apogee"]
             x_r[:, j], x_a[:, j] = one["x_rail"], one["x_apogee"]
+        return self._batch_result(P, t_r, burn, t_apo, x_r, x_a, descent)
+
+    def _batch_result(self, P, t_r, burn, t_apo, x_r, x_a, descent: bool) -> dict:
+        """``run_batch``'s dict from the samples' events; a sample whose ejection charge
+        fires before apogee (or, with ``descent``, after it) flies alone through :meth:`run`."""
         redo = {}
         t_e = ejection.ejection_time(self.setup, P)
         if t_e is not None:                   # each sample in its own ejection case
@@ -762,19 +766,7 @@ class FlightModel:
         h, x_a = self._mapped("apogee", n)(x_k, t_k[None, :], h[None, :], dtc[None, :], P)
         h, x_a = np.array(h).ravel(), np.array(x_a)
         t_apo = t_k + h
-        redo = {}
-        t_e = ejection.ejection_time(self.setup, P)
-        if t_e is not None:                   # each sample in its own ejection case
-            for j in np.nonzero((t_e < t_apo) | (descent & (t_e > t_apo)))[0]:
-                redo[j] = one = self.run(P[:, j], descent=descent)
-                x_a[:, j], t_apo[j] = one["x_apogee"], one["t_apogee"]
-        out = dict(apogee_agl=x_a[2], t_apogee=t_apo, t_rail=t_r,
-                   rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
-        if descent:
-            out.update(self.descend(x_a, t_apo, P))
-            for j, one in redo.items():
-                out["t_landing"][j], out["x_landing"][:, j] = one["t_landing"], one["x_landing"]
-        return out
+        return self._batch_result(P, t_r, burn, t_apo, x_r, x_a, descent)
 
     @staticmethod
     def refine_in_step(func, x_k, t_k, h, dt, P, level=0.0, iterations: int = 5):
