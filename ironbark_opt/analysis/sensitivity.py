@@ -281,7 +281,9 @@ def sensitivities(setup, *, parameters: Mapping[str, float] | None = None, names
     if target is not None:
         from ironbark_opt.optimise.ballast import solve_ballast
 
-        solution = solve_ballast(setup, target, parameters=parameters, **ballast_options)
+        # IPOPT's NLP: its optimum satisfies z(T) = target in the formulation differentiated
+        # below (apogee_functions), which the implicit-function ballast derivatives need
+        solution = solve_ballast(setup, target, parameters=parameters, **{"method": "ipopt", **ballast_options})
         target_agl = float(solution.values["target_agl_m"])
         p0 = np.array([solution.parameters[n] for n in params.NAMES])
         note = f"at the optimal ballast {solution.ballast:.4f} kg for {target_agl:.1f} m AGL ({solution.status})"

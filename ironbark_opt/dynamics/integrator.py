@@ -192,6 +192,12 @@ def cached_library(name: str, key: str, cache_dir: Path | None = None) -> ca.Fun
     return ca.external(name, str(lib))
 
 
+def library_member(name: str, library: str, key: str, cache_dir: Path | None = None) -> ca.Function:
+    """Function ``name`` of the library that :func:`compile_function` stored for the
+    Function ``library`` under ``key`` (one generated with it through ``extra``)."""
+    return ca.external(name, str((Path(cache_dir) if cache_dir else default_cache_dir()) / f"{library}_{key}.so"))
+
+
 def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: str | None = None,
                      background: bool = False, extra=None) -> ca.Function:
     """C-compiled copy of ``func`` loaded with ``casadi.external``.

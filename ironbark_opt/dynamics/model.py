@@ -28,10 +28,12 @@ from ironbark_opt import params
 from ironbark_opt.dynamics import rhs as rhs_mod
 from ironbark_opt.dynamics.frames import launch_quaternion, rail_direction_l, rotation_matrix
 from ironbark_opt.dynamics import ejection, model_cache
-from ironbark_opt.dynamics.integrator import compile_function, grid_fractions, jit_mode, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.integrator import (cached_library, compile_function, grid_fractions, jit_mode,
+                                                library_member, phase_trajectory, rk4_step)
 from ironbark_opt.errors import InputError, SolverError
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
+_PHASES = np.array(["rail", "boost", "coast"])
 #: |lambda| dt allowed for RK4 (its stability region reaches 2.78 on the real
 #: and 2.83 on the imaginary axis); chosen by the RK4-vs-DOP853 validation.
 STABLE_LAMBDA_DT = 1.5
@@ -90,6 +92,10 @@ class FlightModel:
 
     #: length of the parameter vector ``p`` the Functions take
     n_p = params.SIZE
+    #: the Functions loaded from the model's compiled library (empty: none, see _compile_phases)
+    _lib: dict = {}
+    #: True when the model compiles into one library (loaded, or being compiled in the background)
+    _one_library = False
 
     def __init__(self, setup, steps: Steps | None = None, *, jit=False):
         self.setup = setup
@@ -119,18 +125,56 @@ class FlightModel:
                                           **{f"step_{ph}": f for ph, f in self.step.items()},
                                           **{f"traj_{ph}": f for ph, f in self.trajectory.items()},
                                           "apex": self._apex, "discretisation": self.discretisation()})
-        for ph in ("rail", "boost", "coast"):
-            self._run[ph] = self._compiled(self.trajectory[ph])
-        self._apogee_run = self._compiled(self._apogee_event)
+        self._compile_phases()
+
+    def _library_key(self) -> str | None:
+        if self._key is None:
+            return None
+        return hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
 
     def _compiled(self, func: ca.Function) -> ca.Function:
         """``func`` compiled as ``self.jit`` asks (the VM Function itself when it says no)."""
         if not self.jit:
             return func
-        key = None
-        if self._key is not None:
-            key = hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
-        return compile_function(func, key=key, background=self.jit == "auto")
+        return compile_function(func, key=self._library_key(), background=self.jit == "auto")
+
+    #: the Functions compiled into the model's one library with the ascent
+    _LIBRARY = ("ascent_batch", "traj_rail", "traj_boost", "traj_coast", "apogee_event", "outputs_rail",
+                "outputs_boost", "outputs_coast")
+
+    def _compile_phases(self) -> None:
+        """Compile as ``self.jit`` asks: the ascent (:mod:`~ironbark_opt.dynamics.ascent`),
+        the phase trajectories, the apogee event and the phases' output rows, all in
+        one library (their RK4 steps generated and compiled once), loaded from the
+        cache when it has it.  Without a cache key: one library per Function."""
+        self.__dict__.pop("_ascent_cache", None)
+        self.__dict__.pop("_out_cache", None)
+        self._lib = {}
+        key = self._library_key()
+        self._one_library = bool(self.jit) and key is not None and self._FUSED
+        if not self._one_library:
+            for ph in ("rail", "boost", "coast"):
+                self._run[ph] = self._compiled(self.trajectory[ph])
+            self._apogee_run = self._compiled(self._apogee_event)
+            return
+        lib = cached_library("ascent", key)
+        if lib is None:
+            vm, vm_batch = self._ascent_vm()
+            members = {"ascent_batch": vm_batch,
+                       "traj_rail": self.trajectory["rail"], "traj_boost": self.trajectory["boost"],
+                       "traj_coast": self.trajectory["coast"], "apogee_event": self._apogee_event,
+                       **{f"outputs_{ph}": self._outputs_base(ph) for ph in ("rail", "boost", "coast")}}
+            lib = compile_function(vm, key=key, background=self.jit == "auto",
+                                   extra=lambda: [members[n] for n in self._LIBRARY])
+            if lib is vm:                       # compiling in the background (or failed): the VM meanwhile
+                for ph in ("rail", "boost", "coast"):
+                    self._run[ph] = self.trajectory[ph]
+                self._apogee_run = self._apogee_event
+                return
+        self._lib = {"ascent": lib, **{name: library_member(name, "ascent", key) for name in self._LIBRARY}}
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = self._lib[f"traj_{ph}"]
+        self._apogee_run = self._lib["apogee_event"]
 
     def _choose_grid(self, p):
         """Fix the RK4 grid from the *nominal* flight (deterministic: the same
@@ -158,13 +202,18 @@ class FlightModel:
         self.n_boost, self.n_coast, self.coast_grading = int(n_boost), int(n_coast), float(coast_grading)
         self._set_trajectory("boost", self.n_boost)
         self._set_trajectory("coast", self.n_coast)
-        for ph in ("rail", "boost", "coast"):
-            self._run[ph] = self._compiled(self.trajectory[ph])
+        self._compile_phases()
 
     @property
     def coast_fractions(self) -> np.ndarray:
-        """Coast step boundaries as fractions of the coast (n_coast + 1)."""
-        return grid_fractions(self.n_coast, self.coast_grading)
+        """Coast step boundaries as fractions of the coast (n_coast + 1; read-only)."""
+        key = (self.n_coast, self.coast_grading)
+        cached = self.__dict__.get("_coast_fractions")
+        if cached is None or cached[0] != key:
+            fr = grid_fractions(self.n_coast, self.coast_grading)
+            fr.flags.writeable = False
+            self.__dict__["_coast_fractions"] = cached = (key, fr)
+        return cached[1]
 
     def coast_fractions_of(self, p) -> np.ndarray:
         """Coast step boundaries of the flight with parameters ``p`` (the model's
@@ -435,6 +484,55 @@ class FlightModel:
         if p.size != self.n_p:
             raise InputError(f"parameter vector has {p.size} entries, expected {self.n_p}")
         _refuse_controller(self.setup)
+        a = self._ascent_fused(p) if self._FUSED else None
+        if a is None:
+            a = self._ascent_phased(p)
+        return self._finish(p, a, descent)
+
+    #: fly the ascent through :mod:`~ironbark_opt.dynamics.ascent` (one Function) when it applies
+    _FUSED = True
+
+    def _ascent_runner(self):
+        """The :class:`~ironbark_opt.dynamics.ascent.AscentRunner` of this model's grid
+        (built on first use; compiled as ``self.jit`` asks, like the phase Functions)."""
+        cache = self.__dict__.setdefault("_ascent_cache", {})
+        key = self.discretisation()
+        if key not in cache:
+            from ironbark_opt.dynamics.ascent import AscentRunner
+            cache.clear()
+            func = self._lib.get("ascent")
+            if func is None:
+                func = self._ascent_vm()[0] if self._one_library else self._compiled(self._ascent_vm()[0])
+            cache[key] = AscentRunner(func)
+        return cache[key]
+
+    def _ascent_vm(self) -> tuple[ca.Function, ca.Function]:
+        """``(ascent, ascent_batch)`` of :func:`~ironbark_opt.dynamics.ascent.ascent_functions`
+        in the VM, built once per grid."""
+        grid, funcs = self.__dict__.get("_ascent_vm_funcs", (None, None))
+        if grid != self.discretisation():
+            from ironbark_opt.dynamics.ascent import ascent_functions
+            funcs = ascent_functions(self)
+            self.__dict__["_ascent_vm_funcs"] = (self.discretisation(), funcs)
+        return funcs
+
+    def _ascent_fused(self, p) -> dict | None:
+        """The ascent from one call of the ascent Function, or None where it does not
+        apply (then :meth:`_ascent_phased` flies it, and raises what it finds)."""
+        from ironbark_opt.dynamics.ascent import EV, applies
+        if p[params.index("rail_length")] - self.setup.rail_exit_offset <= 0:
+            return None
+        r = self._ascent_runner()(p)
+        if r is None or not applies([r[k] for k in EV])[0]:
+            return None
+        k, t_b = int(r["k"]), r["t_burnout"]
+        return dict(x0=r["x0"], t_r=r["t_rail"], X_rail=r["X_rail"], t_b=t_b, X_boost=r["X_boost"],
+                    span=r["t_end"] - t_b, k=k, X_coast=r["X_coast"][:, :k], t_a=r["t_k"] + r["h"],
+                    x_a=r["x_apogee"])
+
+    def _ascent_phased(self, p) -> dict:
+        """The ascent phase by phase from Python (rail-exit secant, boost, coast to a
+        horizon, apogee refinement): the path :meth:`_ascent_fused` falls back to."""
         x0 = self._x0(p)
         t_r, X_rail = self._rail_exit(p)
         t_b = self.burn_time(p)
@@ -469,15 +567,23 @@ class FlightModel:
         vz_k = vz_b if k == 0 else vz[k - 1]
         h0 = dt_c * vz_k / (vz_k - vz[k]) if vz_k != vz[k] else dt_c
         h, x_a = self._apogee_run(x_k, t_k, h0, dt_c, p)
-        h, x_a = float(h), np.array(x_a).ravel()
-        t_a = t_k + h
+        return dict(x0=x0, t_r=t_r, X_rail=X_rail, t_b=t_b, X_boost=X_boost, span=span, k=k,
+                    X_coast=X_coast[:, :k], t_a=t_k + float(h), x_a=np.array(x_a).ravel())
+
+    def _finish(self, p, a: dict, descent: bool) -> dict:
+        """``run``'s result from an ascent (:meth:`_ascent_fused` or :meth:`_ascent_phased`):
+        samples, events, an ejection before apogee, the descent."""
+        x0, t_r, X_rail, t_b, X_boost = a["x0"], a["t_r"], a["X_rail"], a["t_b"], a["X_boost"]
+        k, span, t_a, x_a = a["k"], a["span"], a["t_a"], a["x_a"]
+        x_r, x_b = X_rail[:, -1].copy(), X_boost[:, -1]
+        fr = self.coast_fractions_of(p)
         n_r, n_b = X_rail.shape[1], X_boost.shape[1]
         t_e = ejection.ejection_time(self.setup, p)
         head_t = np.concatenate([[0.0], np.linspace(0, t_r, n_r + 1)[1:], self.boost_times(t_r, t_b, p)])
         head_x = np.hstack([x0[:, None], X_rail, X_boost])
-        head_phase = ["rail"] * (n_r + 1) + ["boost"] * n_b
         extra = {}
         if t_e is not None and t_e < t_a:       # the chute opens on the way up
+            head_phase = ["rail"] * (n_r + 1) + ["boost"] * n_b
             t_s, X_s, ph_s, t_a2, x_a2 = ejection.fly_early(self, x_b, t_b, t_e, p, t_a)
             extra = dict(t_ejection=t_e, x_ejection=X_s[:, ph_s.index("ejected") - 1],
                          ejection_before_apogee_s=t_a - t_e, coasting_apogee_agl_m=float(x_a[2]))
@@ -487,8 +593,8 @@ class FlightModel:
             phase = np.array(head_phase + ph_s)
         else:
             t = np.concatenate([head_t, t_b + span * fr[1:k + 1], [t_a]])
-            x = np.hstack([head_x, X_coast[:, :k], x_a[:, None]])
-            phase = np.array(head_phase + ["coast"] * (k + 1))
+            x = np.hstack([head_x, a["X_coast"][:, :k], x_a[:, None]])
+            phase = np.repeat(_PHASES, (n_r + 1, n_b, k + 1))
             if t_e is not None:
                 extra = dict(t_ejection=t_e)
         out = dict(t=t, x=x, phase=phase, p=p, t_rail=t_r, t_burnout=t_b, t_apogee=t_a,
@@ -534,10 +640,10 @@ class FlightModel:
     def run_batch(self, P: np.ndarray, *, descent: bool = False) -> dict:
         """Fly many parameter vectors at once to apogee (the Monte Carlo path).
 
-        The same phase Functions as :meth:`run`, mapped over the columns of
-        ``P`` (``params.SIZE`` x n, threads); the events (rail exit, apogee)
-        are solved for all samples together by the same methods as in
-        :meth:`run`.
+        The ascent Function of :meth:`run` mapped over the columns of ``P``
+        (``params.SIZE`` x n, threads), so each sample equals its single run to
+        the bit; the motor-slot model maps the phase Functions and solves the
+        events for all samples together by the same methods as in :meth:`run`.
 
         Returns
         -------
@@ -550,6 +656,54 @@ class FlightModel:
         if P.ndim != 2 or P.shape[0] != self.n_p:
             raise InputError(f"parameter matrix must be {self.n_p} x n, got {P.shape}")
         _refuse_controller(self.setup)
+        if self._FUSED:
+            return self._run_batch_fused(P, descent)
+        return self._run_batch_phased(P, descent)
+
+    def _run_batch_fused(self, P: np.ndarray, descent: bool) -> dict:
+        """:meth:`run_batch` by ``ascent_batch`` mapped over the samples (threads): the
+        very Function of :meth:`run`, so a sample and its single run agree to the bit;
+        the samples it does not apply to fly one by one through :meth:`run`."""
+        from ironbark_opt.dynamics.ascent import EV, applies
+        n = P.shape[1]
+        if np.any(P[params.index("rail_length")] - self.setup.rail_exit_offset <= 0):
+            raise InputError("rail length shorter than the nozzle-to-guide distance in some samples",
+                             field="rail_length")
+        cache = self.__dict__.setdefault("_map_cache", {})
+        if ("ascent_batch", n) not in cache:
+            base = self._lib.get("ascent_batch")
+            if base is None:
+                base = self._ascent_vm()[1] if self._one_library else self._compiled(self._ascent_vm()[1])
+            cache[("ascent_batch", n)] = base.map(n, "thread", 2)
+        ev, x_r, x_a = (np.array(v) for v in cache[("ascent_batch", n)](P))
+        r = dict(zip(EV, ev))
+        t_r, burn, t_apo = r["t_rail"], r["t_burnout"], r["t_k"] + r["h"]
+        for j in np.nonzero(~applies(ev))[0]:
+            one = self.run(P[:, j])
+            t_r[j], burn[j], t_apo[j] = one["t_rail"], one["t_burnout"], one["t_apogee"]
+            x_r[:, j], x_a[:, j] = one["x_rail"], one["x_apogee"]
+        return self._batch_result(P, t_r, burn, t_apo, x_r, x_a, descent)
+
+    def _batch_result(self, P, t_r, burn, t_apo, x_r, x_a, descent: bool) -> dict:
+        """``run_batch``'s dict from the samples' events; a sample whose ejection charge
+        fires before apogee (or, with ``descent``, after it) flies alone through :meth:`run`."""
+        redo = {}
+        t_e = ejection.ejection_time(self.setup, P)
+        if t_e is not None:                   # each sample in its own ejection case
+            for j in np.nonzero((t_e < t_apo) | (descent & (t_e > t_apo)))[0]:
+                redo[j] = one = self.run(P[:, j], descent=descent)
+                x_a[:, j], t_apo[j] = one["x_apogee"], one["t_apogee"]
+        out = dict(apogee_agl=x_a[2], t_apogee=t_apo, t_rail=t_r,
+                   rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
+        if descent:
+            out.update(self.descend(x_a, t_apo, P))
+            for j, one in redo.items():
+                out["t_landing"][j], out["x_landing"][:, j] = one["t_landing"], one["x_landing"]
+        return out
+
+    def _run_batch_phased(self, P: np.ndarray, descent: bool) -> dict:
+        """:meth:`run_batch` phase by phase (the motor-slot model's path): the phase
+        Functions mapped, the rail-exit secant and apogee refinement vectorised."""
         n = P.shape[1]
         idx = np.arange(n)
         x0, e = (np.array(v) for v in self._mapped("launch", n)(P))
@@ -612,19 +766,7 @@ class FlightModel:
         h, x_a = self._mapped("apogee", n)(x_k, t_k[None, :], h[None, :], dtc[None, :], P)
         h, x_a = np.array(h).ravel(), np.array(x_a)
         t_apo = t_k + h
-        redo = {}
-        t_e = ejection.ejection_time(self.setup, P)
-        if t_e is not None:                   # each sample in its own ejection case
-            for j in np.nonzero((t_e < t_apo) | (descent & (t_e > t_apo)))[0]:
-                redo[j] = one = self.run(P[:, j], descent=descent)
-                x_a[:, j], t_apo[j] = one["x_apogee"], one["t_apogee"]
-        out = dict(apogee_agl=x_a[2], t_apogee=t_apo, t_rail=t_r,
-                   rail_exit_speed=np.linalg.norm(x_r[3:6], axis=0), t_burnout=burn, x_apogee=x_a)
-        if descent:
-            out.update(self.descend(x_a, t_apo, P))
-            for j, one in redo.items():
-                out["t_landing"][j], out["x_landing"][:, j] = one["t_landing"], one["x_landing"]
-        return out
+        return self._batch_result(P, t_r, burn, t_apo, x_r, x_a, descent)
 
     @staticmethod
     def refine_in_step(func, x_k, t_k, h, dt, P, level=0.0, iterations: int = 5):
@@ -775,6 +917,12 @@ class FlightModel:
             y[:, idx] = np.array(self._outputs_function(ph, idx.size)(x[:, idx], t[idx][None, :], P))
         return y
 
+    def _outputs_base(self, phase: str) -> ca.Function:
+        """``(x, t, p) -> y``: the output rows of ``phase``'s right-hand side at one sample."""
+        f = self.rhs[phase] if phase in self.rhs else self._stage_rhs[phase]
+        xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
+        return ca.Function(f"outputs_{phase}", [xs, ts, ps], [f(xs, ts, ps)[1]])
+
     def _outputs_function(self, phase: str, n: int) -> ca.Function:
         """``(X (13 x n), t (1 x n), p) -> Y``: the phase's output rows mapped over n
         samples; built once per (phase, n) and kept (``simulate`` calls it on every run)."""
@@ -782,10 +930,8 @@ class FlightModel:
         if (phase, n) not in cache:
             base = cache.get(phase)
             if base is None:
-                f = self.rhs[phase] if phase in self.rhs else self._stage_rhs[phase]
-                xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
-                base = ca.Function(f"outputs_{phase}", [xs, ts, ps], [f(xs, ts, ps)[1]])
-                if phase in self.rhs:
+                base = self._lib.get(f"outputs_{phase}") or self._outputs_base(phase)
+                if phase in self.rhs and not self._one_library:    # else: in the model's library
                     base = self._compiled(base)
                 cache[phase] = base
             cache[(phase, n)] = base.map(n)

@@ -35,6 +35,8 @@ class SlotFlightModel(FlightModel):
     ``_final_state`` and the ballast NLP take ``p_ext``.
     """
 
+    _FUSED = False          # grids read from p: flown phase by phase
+
     def __init__(self, setup, n_knots: int, capacity: tuple[int, int], steps: Steps | None = None, *, jit=False):
         self.slot = MotorSlot(n_knots, params.SIZE)
         self.cap_boost, self.cap_coast = int(capacity[0]), int(capacity[1])

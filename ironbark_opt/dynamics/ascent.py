@@ -1,0 +1,207 @@
+"""The whole ascent in one CasADi Function: rail exit, boost, coast, apogee.
+
+:meth:`FlightModel.run <ironbark_opt.dynamics.model.FlightModel.run>` used to
+drive the phases from Python (18 Function calls with NumPy conversions, the
+rail phase integrated once per secant iterate).  :func:`ascent_functions`
+builds the same sequence as one Function of ``p`` (compiled with the model's
+other libraries), so a run is one call plus NumPy bookkeeping:
+
+- **rail exit**: the rail phase over ``[0, min(0.5 s, burnout)]`` brackets the
+  exit; the linear interpolation of its samples is the first iterate, a
+  Newton step with the along-rail speed the second, then secant steps (the
+  same residual and tolerance as ``FlightModel._rail_exit``: ``|s - L| <
+  1e-10 m``).  Each further iteration is a conditional call (``Function.if_else``,
+  a CasADi switch): once the residual is below the tolerance the remaining
+  ones cost nothing, so the rail phase is flown only as often as needed;
+- **boost** on the model's own boost trajectory (its grid, its air-start segments);
+- **coast** on the model's coast grid over the horizon ``t_b + v_z,b / g0 + 2 s``,
+  in chunks of :data:`COAST_CHUNK` steps; a chunk starting at ``v_z <= 0`` is
+  skipped (its columns repeat the last state), so the steps past apogee
+  that the former fixed horizon flew are mostly not flown;
+- **apogee**: the first coast step ending at ``v_z <= 0`` is picked by a one-hot
+  weight and refined by the model's own apogee event (Newton on the step
+  length, :meth:`FlightModel._apogee_function`).
+
+Every step is the same expression on the same step boundaries as the phased
+path, so the results agree with it to rounding (the rail-exit time differs
+within the root tolerance: ~1e-12 relative).  Flags in the output let
+``run`` fall back to the phased path where this one does not apply (the rail
+not left within 0.5 s, the iteration not converged, no apogee within the
+horizon).
+"""
+from __future__ import annotations
+
+import casadi as ca
+import numpy as np
+
+from ironbark_opt import params
+from ironbark_opt.dynamics.frames import rotation_matrix
+from ironbark_opt.dynamics.integrator import grid_fractions
+
+#: rail-exit residual accepted [m] (as ``FlightModel._rail_exit``)
+RAIL_TOL_M = 1e-10
+#: rail passes after the bracketing one (conditional: only the needed ones run)
+RAIL_ITERATIONS = 8
+#: coast steps per conditionally evaluated chunk
+COAST_CHUNK = 10
+#: rows of the ``ev`` output
+EV = ("t_rail", "g_rail", "g_bracket", "t_burnout", "vz_burnout", "t_end", "k", "found", "t_k", "h", "rail_passes")
+G0 = 9.80665   # [m/s^2] standard gravity, the horizon's first guess (as in model.py)
+
+
+def _rail_pass(model) -> ca.Function:
+    """``(t, x0, e, d, p) -> (g, v, X)``: the rail phase over [0, t]; residual
+    ``g = e . r - d`` [m] and the along-rail speed ``v`` [m/s] at its end."""
+    t, d = ca.MX.sym("t"), ca.MX.sym("d")
+    x0, e, p = ca.MX.sym("x0", 13), ca.MX.sym("e", 3), ca.MX.sym("p", model.n_p)
+    X = model.trajectory["rail"](x0, 0, t, p)
+    x = X[:, -1]
+    g = ca.dot(e, x[0:3]) - d
+    v = ca.dot(e, rotation_matrix(x[6:10]) @ x[3:6])
+    return ca.Function("rail_pass", [t, x0, e, d, p], [g, v, X])
+
+
+def _secant_iteration(rail: ca.Function, nr: int) -> ca.Function:
+    """One secant step as a switch: ``(go, t_a, g_a, X_a, t_b, x0, e, d, p, n) ->
+    (t_a, g_a, X_a, t_b, n)``; with ``go`` false the state passes through unflown."""
+    t_a, g_a, t_b, n = ca.MX.sym("t_a"), ca.MX.sym("g_a"), ca.MX.sym("t_b"), ca.MX.sym("n")
+    X_a = ca.MX.sym("X_a", 13, nr)
+    x0, e, d, p = ca.MX.sym("x0", 13), ca.MX.sym("e", 3), ca.MX.sym("d"), ca.MX.sym("p", rail.size1_in(4))
+    g_b, _, X_b = rail(t_b, x0, e, d, p)
+    same = g_b == g_a
+    t_new = ca.if_else(same, t_b, t_b - g_b * (t_b - t_a) / ca.if_else(same, 1.0, g_b - g_a))
+    ins = [t_a, g_a, X_a, t_b, x0, e, d, p, n]
+    fly = ca.Function("secant_fly", ins, [t_b, g_b, X_b, t_new, n + 1])
+    keep = ca.Function("secant_keep", ins, [t_a, g_a, X_a, t_b, n])
+    return ca.Function.if_else("secant", fly, keep)
+
+
+def _coast_chunk(model, n: int, name: str) -> ca.Function:
+    """``(x0, starts, lengths, t0, span, p) -> X``: ``n`` coast steps on the given
+    grid fractions, the same expression per step as ``phase_trajectory``."""
+    step = model.step["coast"]
+    x, f0, df = ca.SX.sym("x", 13), ca.SX.sym("f0"), ca.SX.sym("df")
+    t0, span, ps = ca.SX.sym("t0"), ca.SX.sym("span"), ca.SX.sym("p", model.n_p)
+    body = ca.Function(f"{name}_body", [x, f0, df, t0, span, ps], [step(x, t0 + span * f0, span * df, ps)])
+    acc = body.mapaccum(f"{name}_acc", n)
+    x0, t0m, spm = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("span")
+    st, ln, pm = ca.MX.sym("starts", 1, n), ca.MX.sym("lengths", 1, n), ca.MX.sym("p", model.n_p)
+    X = acc(x0, st, ln, ca.repmat(t0m, 1, n), ca.repmat(spm, 1, n), ca.repmat(pm, 1, n))
+    ins = [x0, st, ln, t0m, spm, pm]
+    fly = ca.Function(f"{name}_fly", ins, [X])
+    skip = ca.Function(f"{name}_skip", ins, [ca.repmat(x0, 1, n)])
+    return ca.Function.if_else(name, fly, skip)
+
+
+def _first(mask: ca.MX) -> ca.MX:
+    """One-hot row: 1 at the first true column of ``mask`` (all zeros if none)."""
+    return mask * (ca.cumsum(mask, 1) == 1)
+
+
+def ascent_functions(model) -> tuple[ca.Function, ca.Function]:
+    """``(ascent, ascent_batch)``: ``p -> (ev, x0, X_rail, X_boost, X_coast, x_apogee)``
+    (see the module doc; ``ev`` holds the scalars named in :data:`EV`) and, from
+    the same graph (the same operations, so the same numbers to the bit),
+    ``p -> (ev, x_rail, x_apogee)``, mapped over the samples of
+    ``FlightModel.run_batch`` without their trajectories."""
+    nr, nc = model.steps.n_rail, model.n_coast
+    p = ca.MX.sym("p", model.n_p)
+    x0, e = model._launch(p)
+    d = p[params.index("rail_length")] - model.setup.rail_exit_offset
+    burn = model.burn_time(p)
+    rail = _rail_pass(model)
+
+    # rail exit: bracket, interpolated guess, Newton step with the speed, secant steps
+    hi = ca.fmin(0.5, burn)
+    g_hi, _, X_hi = rail(hi, x0, e, d, p)
+    trav = ca.horzcat(-d, e.T @ X_hi[0:3, :] - d)                      # 1 x (nr + 1)
+    first = _first(trav > 0)                                          # first sample past the exit
+    s1 = ca.mtimes(trav, first.T)
+    s0 = ca.mtimes(trav[:, :-1], first[:, 1:].T)
+    k = ca.mtimes(ca.DM(np.arange(nr + 1)).T, first.T)
+    dt = hi / nr
+    t_a = (k - 1) * dt + dt * (-s0) / ca.if_else(s1 == s0, 1.0, s1 - s0)
+    g_a, v_a, X_a = rail(t_a, x0, e, d, p)
+    t_b = t_a - g_a / ca.if_else(v_a == 0, 1.0, v_a)
+    step = _secant_iteration(rail, nr)
+    n = ca.MX(2)
+    for _ in range(RAIL_ITERATIONS):
+        t_a, g_a, X_a, t_b, n = step(ca.fabs(g_a) >= RAIL_TOL_M, t_a, g_a, X_a, t_b, x0, e, d, p, n)
+    t_r, x_r = t_a, X_a[:, -1]
+
+    # boost on the model's own trajectory (grid and air-start segments)
+    X_b = model.trajectory["boost"](x_r, t_r, burn, p)
+    x_b = X_b[:, -1]
+    vz_b = model.vz_l(x_b)
+    t_end = burn + vz_b / G0 + 2.0
+    span = t_end - burn
+
+    # coast in chunks, each flown only while still climbing
+    fr = grid_fractions(nc, model.coast_grading)
+    starts, lengths = fr[:-1], np.diff(fr)
+    blocks, x, chunks = [], x_b, {}
+    for j in range(0, nc, COAST_CHUNK):
+        m = min(COAST_CHUNK, nc - j)
+        if m not in chunks:
+            chunks[m] = _coast_chunk(model, m, f"coast_chunk_{m}")
+        go = model.vz_l(x) > 0
+        X = chunks[m](go, x, ca.DM(starts[j:j + m]).T, ca.DM(lengths[j:j + m]).T, burn, span, p)
+        blocks.append(X)
+        x = X[:, -1]
+    X_c = ca.hcat(blocks)
+    vz = model.vz_l.map(nc)(X_c)
+
+    # apogee inside the first step ending at v_z <= 0
+    hot = _first(vz <= 0)
+    found = ca.sum2(hot)
+    x_k = ca.mtimes(X_c[:, :-1], hot[:, 1:].T) + x_b * hot[:, 0]
+    vz_k = ca.mtimes(vz[:, :-1], hot[:, 1:].T) + vz_b * hot[:, 0]
+    vz_end = ca.mtimes(vz, hot.T)
+    kc = ca.mtimes(ca.DM(np.arange(nc)).T, hot.T)
+    f_k = ca.mtimes(ca.DM(starts).T, hot.T)
+    dt_c = span * ca.mtimes(ca.DM(lengths).T, hot.T)
+    t_k = burn + span * f_k
+    h0 = ca.if_else(vz_k != vz_end, dt_c * vz_k / ca.if_else(vz_k != vz_end, vz_k - vz_end, 1.0), dt_c)
+    h, x_a = model._apogee_event(x_k, t_k, h0, dt_c, p)
+    ev = ca.vertcat(t_r, g_a, g_hi, burn, vz_b, t_end, kc, found, t_k, h, n)
+    return (ca.Function("ascent", [p], [ev, x0, X_a, X_b, X_c, x_a],
+                        ["p"], ["ev", "x0", "X_rail", "X_boost", "X_coast", "x_apogee"]),
+            ca.Function("ascent_batch", [p], [ev, x_r, x_a], ["p"], ["ev", "x_rail", "x_apogee"]))
+
+
+def applies(ev) -> np.ndarray:
+    """Where the ascent Function's answer stands (``ev``: rows of :data:`EV`, one column
+    per sample): the bracket held, the rail-exit residual met its tolerance, the
+    rail was left before burnout, the rocket climbs at burnout, apogee is within
+    the horizon.  Elsewhere the phase-by-phase path flies (and reports errors)."""
+    ev = np.asarray(ev, dtype=float).reshape(len(EV), -1)
+    r = dict(zip(EV, ev))
+    return ((r["g_bracket"] > 0) & (np.abs(r["g_rail"]) < RAIL_TOL_M) & (r["t_rail"] < r["t_burnout"])
+            & (r["vz_burnout"] > 0) & (r["found"] == 1))
+
+
+class AscentRunner:
+    """Calls an ascent Function through a CasADi buffer: NumPy arrays in and out,
+    no DM conversions.  ``__call__(p)`` returns a dict of fresh arrays."""
+
+    def __init__(self, func: ca.Function):
+        self.func = func
+        self._buf, self._eval = func.buffer()
+        self._p = np.zeros(func.size1_in(0))
+        self._buf.set_arg(0, memoryview(self._p))
+        self._out = []
+        for i in range(func.n_out()):
+            # column-major (rows x cols) = C-order (cols x rows): the transpose is the matrix
+            arr = np.zeros((func.size2_out(i), func.size1_out(i)))
+            self._buf.set_res(i, memoryview(arr))
+            self._out.append(arr)
+
+    def __call__(self, p: np.ndarray) -> dict | None:
+        self._p[:] = p
+        self._eval()
+        if self._buf.ret() != 0:
+            return None
+        ev, x0, X_r, X_b, X_c, x_a = (a.T.copy() for a in self._out)
+        out = dict(zip(EV, ev[:, 0]))
+        out.update(x0=x0[:, 0], X_rail=X_r, X_boost=X_b, X_coast=X_c, x_apogee=x_a[:, 0])
+        return out

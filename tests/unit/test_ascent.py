@@ -1,0 +1,79 @@
+"""The one-Function ascent (dynamics/ascent.py) against the phase-by-phase path it replaced.
+
+Independent method: ``FlightModel._ascent_phased`` (the rail-exit secant from
+Python, each phase one call, the coast flown to its whole horizon).  Both fly
+the same RK4 steps; the rail-exit root differs within its 1e-10 m tolerance,
+so every sample and event must agree to 1e-9 relative (found: ~1e-14).
+"""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ironbark_opt import params
+from ironbark_opt.dynamics.model import FlightModel
+from ironbark_opt.vehicle import load_setup
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _both(model, p):
+    fused = model._ascent_fused(p)
+    assert fused is not None, "the ascent Function should apply to this flight"
+    return model._finish(p, fused, False), model._finish(p, model._ascent_phased(p), False)
+
+
+def _worst(a, b) -> float:
+    assert a["phase"].tolist() == b["phase"].tolist()
+    # each state relative to its range; floor 1e-6 (Kestrel's roll rate is round-off, ~1e-16 rad/s)
+    scale = np.maximum(np.abs(b["x"]).max(axis=1, keepdims=True), 1e-6)
+    worst = float(np.max(np.abs(a["x"] - b["x"]) / scale))
+    worst = max(worst, float(np.max(np.abs(a["t"] - b["t"]))) / b["t"][-1])
+    for key in ("t_rail", "t_burnout", "t_apogee"):
+        worst = max(worst, abs(a[key] - b[key]) / b[key])
+    return worst
+
+
+@pytest.mark.parametrize("example, overrides", [
+    ("calisto/calisto.toml", {}),
+    ("calisto/calisto.toml", {"ballast_mass": 1.5, "drag_scale": 1.1}),
+    ("calisto/calisto.toml", {"thrust_scale": 0.9, "inclination": np.radians(80.0)}),
+    ("kestrel/kestrel.toml", {}),
+])
+def test_fused_ascent_equals_the_phased_one(tmp_path, monkeypatch, example, overrides):
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples" / example)
+    model = FlightModel(setup)
+    p = setup.nominal_parameters(**overrides)
+    fused, phased = _both(model, p)
+    worst = _worst(fused, phased)
+    passes = model._ascent_runner()(p)["rail_passes"]
+    print(f"{example} {overrides}: apogee {fused['x_apogee'][2]:.6f} m (phased {phased['x_apogee'][2]:.6f} m), "
+          f"rail passes {passes:.0f}, worst relative difference {worst:.1e} (tolerance 1e-9)")
+    assert worst < 1e-9
+    assert passes <= 6                      # the phased secant flies the rail 5-6 times
+
+
+def test_run_falls_back_where_the_ascent_function_does_not_apply(tmp_path, monkeypatch):
+    """A 12 m rail is left after 0.5 s: the bracketing pass finds no exit, ``run``
+    flies phase by phase (doubling the bracket) and gives that path's answer."""
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    model = FlightModel(setup)
+    p = setup.nominal_parameters(rail_length=12.0)
+    assert model._ascent_fused(p) is None
+    run = model.run(p)
+    ref = model._finish(p, model._ascent_phased(p), False)
+    assert run["t_rail"] > 0.5
+    assert run["x_apogee"][2] == ref["x_apogee"][2]
+
+
+def test_rail_shorter_than_the_guide_distance_is_an_input_error(tmp_path, monkeypatch):
+    from ironbark_opt.errors import InputError
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    model = FlightModel(setup)
+    p = setup.nominal_parameters()
+    p[params.index("rail_length")] = 0.5 * setup.rail_exit_offset
+    with pytest.raises(InputError, match="rail length"):
+        model.run(p)
