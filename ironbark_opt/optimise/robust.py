@@ -60,6 +60,8 @@ from ironbark_opt import params
 from ironbark_opt.errors import InputError, SolverError
 
 OBJECTIVES = ("in_band", "expected_abs_miss")
+#: the nominal parameters' flight at each ballast, reported as the nominal ballast solution reports it
+_FLOWN = ("apogee_agl_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal", "static_margin_min_cal")
 
 
 def _phi(u):
@@ -103,13 +105,16 @@ def smoothed_objective(apogee, target: float, objective: str, band: float, width
 
 
 def event_function(model, free_position: bool) -> ca.Function:
-    """``(w, t_r, T, p) -> (r, J)``: ``r = (g_rail [m], z(T) [m AGL], v_z(T) [m/s])`` of one
-    sample with ballast ``w = (m_b[, x_b])`` replacing the entries of ``p``, and
-    ``J = dr/d(w, t_r, T)``; the model's own phase trajectories, no rootfinder
-    (so it compiles to C).  Symbolic construction, numeric use."""
-    from ironbark_opt.dynamics.frames import rail_direction_l
+    """``(w, t_r, T, p) -> (r, J)``: ``r = (g_rail [m], z(T) [m AGL], v_z(T) [m/s],
+    |v| at rail exit [m/s], static margin at rail exit [cal])`` of one sample with
+    ballast ``w = (m_b[, x_b])`` replacing the entries of ``p``, and
+    ``J = dr/d(w, t_r, T)``; the model's own phases (``_final_state`` with the
+    rail-exit time as an input, as the nominal ballast NLP flies them) and the
+    nominal NLP's rail-exit speed and margin, no rootfinder (so it compiles to
+    C).  Symbolic construction, numeric use."""
+    from ironbark_opt.dynamics.model import _final_state
+    from ironbark_opt.optimise.ballast import _SM
 
-    setup = model.setup
     if hasattr(type(model), "final_state_symbolic"):
         raise InputError("robust ballast flies single-stage rockets only", field="--robust")
     k = 2 if free_position else 1
@@ -117,14 +122,9 @@ def event_function(model, free_position: bool) -> ca.Function:
     w, t_r, T = ca.MX.sym("w", k), ca.MX.sym("t_r"), ca.MX.sym("T")
     p = ca.MX.sym("p", params.SIZE)
     pw = ca.vertcat(p[:i_m], w[0], w[1] if free_position else p[i_x], p[i_x + 1:])
-    P = params.unpack(pw)
-    x_r = model.trajectory["rail"](model.initial_state(pw), 0, t_r, pw)[:, -1]
-    g = ca.dot(x_r[0:3], rail_direction_l(P["inclination"], P["heading"])) - (P["rail_length"] -
-                                                                              setup.rail_exit_offset)
-    t_b = float(setup.motor.burn_time) * P["burn_time_scale"]
-    X_b = model.trajectory["boost"](x_r, t_r, t_b, pw)
-    x_T = model.trajectory["coast"](X_b[:, -1], t_b, T, pw)[:, -1]
-    r = ca.vertcat(g, x_T[2], model.vz_l(x_T))
+    x_T, _, x_r, _ = _final_state(model, pw, T, 0.0, t_rail=t_r)
+    r = ca.vertcat(model.rail_residual(t_r, pw), x_T[2], model.vz_l(x_T), ca.norm_2(x_r[3:6]),
+                   model.rhs["boost"](x_r, t_r, pw)[1][_SM])
     return ca.Function("robust_events", [w, t_r, T, p], [r, ca.jacobian(r, ca.vertcat(w, t_r, T))],
                        ["w", "t_r", "T", "p"], ["r", "J"])
 
@@ -140,7 +140,7 @@ def _compiled_events(model, free_position: bool) -> ca.Function:
             key = None
             if model._key is not None:
                 key = hashlib.sha256(repr((model._key, model.discretisation(), free_position,
-                                           "robust")).encode()).hexdigest()[:24]
+                                           "robust_events_rail")).encode()).hexdigest()[:24]
             func = compile_function(func, key=key)
         cache[free_position] = func
     return cache[free_position]
@@ -172,18 +172,29 @@ class SampleApogees:
 
     def __call__(self, w) -> tuple[np.ndarray, np.ndarray]:
         """(apogee [m AGL] (N,), d apogee / d w (k, N)) at ballast ``w``."""
+        return self.events(w)[:2]
+
+    def rail(self, w) -> tuple[np.ndarray, np.ndarray]:
+        """(rail-exit speed [m/s] and static margin at rail exit [cal] (2, N), their
+        derivatives in ``w`` (2, k, N)) at ballast ``w``."""
+        return self.events(w)[2:]
+
+    def events(self, w):
+        """(apogee, d apogee/dw, rail outputs, d rail outputs/dw) at ``w``: the events solved
+        by Newton's method, derivatives by the implicit-function theorem."""
         w = np.asarray(w, dtype=float).ravel()
         if w.tobytes() in self._seen:
             return self._seen[w.tobytes()]
+        k = self.k
         roots = self.roots.copy()
         if self.droots is not None:                       # first-order predictor
             roots += np.einsum("akn,k->an", self.droots, w - self.w)
         for _ in range(8):
             r, J = self.func(w, roots[0][None, :], roots[1][None, :], self.P)
             self.evaluations += 1
-            r = np.array(r)                                # 3 x N
-            J = np.array(J).reshape(3, self.n, self.k + 2).transpose(0, 2, 1)   # 3 x (k+2) x N
-            g_tr, vz_tr, vz_T = J[0, self.k], J[2, self.k], J[2, self.k + 1]
+            r = np.array(r)                                # 5 x N
+            J = np.array(J).reshape(5, self.n, k + 2).transpose(0, 2, 1)   # 5 x (k+2) x N
+            g_tr, vz_tr, vz_T = J[0, k], J[2, k], J[2, k + 1]
             d_tr = -r[0] / g_tr                           # Newton on the block-triangular system
             d_T = -(r[2] + vz_tr * d_tr) / vz_T
             roots = roots + np.vstack([d_tr, d_T])
@@ -191,23 +202,26 @@ class SampleApogees:
                 break
         else:
             raise SolverError("robust ballast: the events of some samples did not converge")
-        # Apogee at the corrected roots to first order in the last Newton step (<= 1e-5 s on the
+        # Outputs at the corrected roots to first order in the last Newton step (<= 1e-5 s on the
         # rail, 1e-3 s at apogee where v_z = 0: the neglected second-order terms are < 1e-5 m).
-        z = r[1] + J[1, self.k] * d_tr + J[1, self.k + 1] * d_T
-        dtr_dw = -J[0, :self.k] / g_tr                    # implicit-function theorem
-        dT_dw = -(J[2, :self.k] + vz_tr * dtr_dw) / vz_T
-        dz_dw = J[1, :self.k] + J[1, self.k] * dtr_dw + J[1, self.k + 1] * dT_dw
+        z = r[1] + J[1, k] * d_tr + J[1, k + 1] * d_T
+        dtr_dw = -J[0, :k] / g_tr                         # implicit-function theorem
+        dT_dw = -(J[2, :k] + vz_tr * dtr_dw) / vz_T
+        dz_dw = J[1, :k] + J[1, k] * dtr_dw + J[1, k + 1] * dT_dw
+        rail = r[3:5] + J[3:5, k] * d_tr                  # rail exit: no dependence on T
+        drail_dw = J[3:5, :k] + J[3:5, k][:, None, :] * dtr_dw[None]
         self.w, self.roots, self.droots = w, roots, np.stack([dtr_dw, dT_dw])
-        self._seen[w.tobytes()] = (z, dz_dw)
-        return z, dz_dw
+        self._seen[w.tobytes()] = (z, dz_dw, rail, drail_dw)
+        return self._seen[w.tobytes()]
 
 
 class _Objective(ca.Callback):
-    """The smoothed SAA objective as a CasADi Function of ``w`` (value and exact gradient)."""
+    """A numeric ``w -> (value (m,), Jacobian (m, k))`` as a CasADi Function of ``w`` with its
+    exact Jacobian (the smoothed SAA objective, m = 1, or the nominal flight's constraints)."""
 
-    def __init__(self, fn, k: int, name: str = "robust_objective", opts=None):
+    def __init__(self, fn, k: int, name: str = "robust_objective", opts=None, m: int = 1):
         ca.Callback.__init__(self)
-        self.fn, self.k = fn, k
+        self.fn, self.k, self.m = fn, k, m
         self.construct(name, opts or {})
 
     def get_n_in(self):
@@ -220,23 +234,23 @@ class _Objective(ca.Callback):
         return ca.Sparsity.dense(self.k, 1)
 
     def get_sparsity_out(self, i):
-        return ca.Sparsity.dense(1, 1)
+        return ca.Sparsity.dense(self.m, 1)
 
     def eval(self, arg):
-        return [self.fn(np.array(arg[0]).ravel())[0]]
+        return [np.reshape(self.fn(np.array(arg[0]).ravel())[0], (self.m, 1))]
 
     def has_jacobian(self):
         return True
 
     def get_jacobian(self, name, inames, onames, opts):
-        self._jac = _Gradient(self.fn, self.k, name, opts)
+        self._jac = _Gradient(self.fn, self.k, self.m, name, opts)
         return self._jac
 
 
 class _Gradient(ca.Callback):
-    def __init__(self, fn, k, name, opts):
+    def __init__(self, fn, k, m, name, opts):
         ca.Callback.__init__(self)
-        self.fn, self.k = fn, k
+        self.fn, self.k, self.m = fn, k, m
         self.construct(name, opts)
 
     def get_n_in(self):
@@ -246,13 +260,13 @@ class _Gradient(ca.Callback):
         return 1
 
     def get_sparsity_in(self, i):
-        return ca.Sparsity.dense(self.k, 1) if i == 0 else ca.Sparsity.dense(1, 1)
+        return ca.Sparsity.dense(self.k, 1) if i == 0 else ca.Sparsity.dense(self.m, 1)
 
     def get_sparsity_out(self, i):
-        return ca.Sparsity.dense(1, self.k)
+        return ca.Sparsity.dense(self.m, self.k)
 
     def eval(self, arg):
-        return [self.fn(np.array(arg[0]).ravel())[1][None, :]]
+        return [np.reshape(self.fn(np.array(arg[0]).ravel())[1], (self.m, self.k))]
 
 
 @dataclass(frozen=True)
@@ -317,6 +331,15 @@ class RobustBallastSolution:
                       f"{v['saa_probability_in_band']:.3f})"]
         else:
             lines.append(f"  (in-sample values on the {self.samples} SAA samples: no fresh check asked)")
+        for label, pre in (("nominal", "nominal_"), ("robust", "")):
+            lines.append(f"  {label + ' flight':18s} apogee {v[pre + 'apogee_agl_m']:.1f} m AGL, rail exit "
+                         f"{v[pre + 'rail_exit_speed_mps']:.2f} m/s, margin {v[pre + 'static_margin_rail_exit_cal']:.2f}"
+                         f" cal at rail exit ({v[pre + 'static_margin_min_cal']:.2f} min; nominal parameters)")
+        limits = [f"{name} >= {v[key]:g} {unit}" for name, key, unit in
+                  (("rail-exit speed", "min_rail_speed_mps", "m/s"), ("margin", "min_margin_cal", "cal"))
+                  if key in v]
+        if limits:
+            lines.append(f"  limits             {', '.join(limits)} (on the nominal parameters' flight)")
         lines.append(f"  solve time         {v['solve_time_s']:10.2f} s (nominal solve {v['nominal_solve_time_s']:.2f} "
                      f"s, {v['ipopt_iterations']} IPOPT iterations, {v['sample_evaluations']} mapped evaluations)")
         return "\n".join(lines)
@@ -354,6 +377,7 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
                          samples: int = 40, seed: int | None = None, check_samples: int = 1000,
                          check_seed: int | None = None, free_position: bool = False,
                          mass_max: float | None = None, x_range=None, ballast_x: float | None = None,
+                         min_rail_speed: float | None = None, min_margin: float | None = None,
                          parameters: Mapping[str, float] | None = None,
                          ipopt_options: Mapping | None = None) -> RobustBallastSolution:
     """Ballast (and position) that maximise P(|apogee - target| <= band) or minimise E|miss|.
@@ -377,6 +401,11 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
         Seed of the check (default: ``seed + 1``, never the SAA seed).
     free_position, mass_max, x_range, ballast_x, parameters
         As in :func:`~ironbark_opt.optimise.ballast.solve_ballast`.
+    min_rail_speed : float, optional [m/s]
+    min_margin : float, optional [calibers]
+        The nominal ballast's limits, imposed on the robust ballast the same way:
+        on the flight of the nominal parameters (rail-exit speed, static margin
+        at rail exit), as IPOPT constraints with exact gradients.
     ipopt_options : mapping, optional
 
     Returns
@@ -384,7 +413,7 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
     RobustBallastSolution
     """
     from ironbark_opt.analysis.distributions import DispersionSpec, load_spec
-    from ironbark_opt.flight import flight_model
+    from ironbark_opt.flight import flight_model, simulate
     from ironbark_opt.optimise.ballast import _bounds, solve_ballast
 
     if objective not in OBJECTIVES:
@@ -406,7 +435,8 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
         raise InputError("the check needs fresh samples: check_seed must differ from seed", field="check_seed")
     t_start = time.perf_counter()
     nominal = solve_ballast(setup, target, free_position=free_position, mass_max=mass_max, x_range=x_range,
-                            ballast_x=ballast_x, parameters=parameters)
+                            ballast_x=ballast_x, min_rail_speed=min_rail_speed, min_margin=min_margin,
+                            parameters=parameters)
     t_nominal = time.perf_counter() - t_start
     nv = nominal.values
     target_agl = nv["target_agl_m"]
@@ -423,16 +453,31 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
         f, df = smoothed_objective(z, target_agl, objective, band, width)
         return f, dz @ df
 
+    # the nominal flight (the nominal parameters at ballast w): the user's limits and the report
+    flown = model.run_batch(p_nom[:, None])
+    nominal_flight = SampleApogees(model, p_nom[:, None], flown["t_rail"], flown["t_apogee"], free_position)
+    limits = [(i, float(v)) for i, v in enumerate((min_rail_speed, min_margin)) if v is not None]
+
+    def constraints(w):
+        q, dq = nominal_flight.rail(w)
+        rows = [i for i, _ in limits]
+        return q[rows, 0], dq[rows, :, 0]
+
     w0 = [nv["ballast_kg"]] + ([nv["ballast_x_m"]] if free_position else [])
     lbw = [0.0] + ([x_bay[0]] if free_position else [])
     ubw = [m_max] + ([x_bay[1]] if free_position else [])
     obj = _Objective(fn, len(w0))
     W = ca.MX.sym("w", len(w0))
+    nlp = {"x": W, "f": obj(W)}
+    if limits:
+        con = _Objective(constraints, len(w0), "robust_limits", m=len(limits))
+        nlp["g"] = con(W)
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
             "ipopt.hessian_approximation": "limited-memory", "ipopt.tol": 1e-6, "ipopt.max_iter": 50}
     opts.update({(k if k.startswith("ipopt.") else f"ipopt.{k}"): v for k, v in dict(ipopt_options or {}).items()})
-    solver = ca.nlpsol("robust_ballast", "ipopt", {"x": W, "f": obj(W)}, opts)
-    sol = solver(x0=w0, lbx=lbw, ubx=ubw)
+    solver = ca.nlpsol("robust_ballast", "ipopt", nlp, opts)
+    bounds = dict(lbg=[v for _, v in limits], ubg=[np.inf] * len(limits)) if limits else {}
+    sol = solver(x0=w0, lbx=lbw, ubx=ubw, **bounds)
     stats = solver.stats()
     w_opt = np.array(sol["x"]).ravel()
     if not stats["success"] and stats["return_status"] not in ("Solved_To_Acceptable_Level",):
@@ -454,6 +499,16 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
               "solve_time_s": solve_time, "nominal_solve_time_s": t_nominal,
               "ipopt_iterations": int(stats.get("iter_count", 0)), "sample_evaluations": apogees.evaluations,
               "check_samples": int(check_samples)}
+    # the nominal parameters flown at both ballasts by simulate (as the nominal solution reports them)
+    p_rob = p_nom.copy()
+    p_rob[params.index("ballast_mass")], p_rob[params.index("ballast_x")] = m_opt, x_opt
+    flown = simulate(setup, p=p_rob, model=model).summary_values
+    for key in _FLOWN:
+        values[key] = float(flown[key])
+        values[f"nominal_{key}"] = float(nv["resimulated_apogee_agl_m" if key == "apogee_agl_m" else key])
+    for name, value in (("min_rail_speed_mps", min_rail_speed), ("min_margin_cal", min_margin)):
+        if value is not None:
+            values[name] = float(value)
     if check_samples:
         chk = check_ballasts(model, spec, p_nom, {"nominal_": (w0[0], nv["ballast_x_m"]), "": (m_opt, x_opt)},
                              target_agl, band, check_samples, check_seed)

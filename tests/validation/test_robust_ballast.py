@@ -8,7 +8,11 @@ Fast tests (default run, CasADi VM):
   limit (kernel width -> 0) against the plain sample mean;
 - a small solve (8 samples): the robust ballast does not score worse than
   the nominal on its own (smoothed) objective, and the solver's fresh-sample check
-  equals an independent ``montecarlo`` run of the same seed.
+  equals an independent ``montecarlo`` run of the same seed;
+- ``ballast --robust`` with --min-margin/--min-rail-speed: an active margin
+  limit stops the ballast where ``simulate`` (independent numeric flight) puts
+  the margin on the limit; its --card prints the robust answer, the card's
+  numbers equal the JSON's and its P(in band) is the solver's check.
 
 Slow test (``-m slow``): Calisto and Kestrel with their example dispersion
 specs, the default 40 SAA samples, and an independent Monte Carlo of 5,000 fresh
@@ -89,8 +93,13 @@ def test_smoothed_objective_gradient_and_limit(objective):
     assert sharp == pytest.approx(exact, abs=1e-9)
 
 
-def test_small_robust_solve_and_its_check(calisto):
-    sol = solve_robust_ballast(calisto, "3000m", CALISTO_SPEC, samples=8, check_samples=40, seed=11)
+@pytest.fixture(scope="module")
+def small_solve(calisto):
+    return solve_robust_ballast(calisto, "3000m", CALISTO_SPEC, samples=8, check_samples=40, seed=11)
+
+
+def test_small_robust_solve_and_its_check(calisto, small_solve):
+    sol = small_solve
     v = sol.values
     print(sol.summary())
     assert sol.check_seed != sol.seed
@@ -105,6 +114,56 @@ def test_small_robust_solve_and_its_check(calisto):
         assert mc.extra["probability_in_band"] == pytest.approx(v[f"check_{prefix}probability_in_band"], abs=1e-12)
     d = sol.to_dict()
     assert d["robust"] is True and d["nominal_solution"]["ballast_kg"] == v["nominal_ballast_kg"]
+
+
+def test_cli_robust_limits_and_card(calisto, small_solve, tmp_path):
+    """``ballast --robust`` honours --min-margin/--min-rail-speed on the nominal parameters' flight
+    (checked by ``simulate``, an independent numeric flight), and its --card prints the robust
+    answer: the card's numbers are the JSON's, its P(in band) the solver's check."""
+    import json
+
+    from click.testing import CliRunner
+
+    from ironbark_opt.cli import main
+    from ironbark_opt.flight import simulate
+
+    free = small_solve.values
+    x = free["ballast_x_m"]
+    m_mid = 0.5 * (free["ballast_kg"] + free["nominal_ballast_kg"])
+    # unconstrained, the 8-sample SAA takes ballast out (1.23 of 1.58 kg, the margin drops with it):
+    # a minimum margin equal to the one at the midpoint mass must stop it there
+    assert free["ballast_kg"] < m_mid and free["static_margin_rail_exit_cal"] < free["nominal_static_margin_rail_exit_cal"]
+    margin_mid = simulate(calisto, parameters={"ballast_mass": m_mid, "ballast_x": x}).summary_values[
+        "static_margin_rail_exit_cal"]
+    v_nominal = free["nominal_rail_exit_speed_mps"]         # satisfied by every lighter ballast: inactive
+    card = tmp_path / "card.png"
+    res = CliRunner().invoke(main, ["ballast", str(CALISTO), "--target", "3000m", "--robust", "--spec",
+                                    str(CALISTO_SPEC), "--samples", "8", "--check-samples", "40", "--seed", "11",
+                                    "--min-margin", repr(margin_mid), "--min-rail-speed", repr(v_nominal),
+                                    "--card", str(card), "--json"])
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    print({k: out[k] for k in ("ballast_kg", "static_margin_rail_exit_cal", "rail_exit_speed_mps",
+                               "check_probability_in_band")}, "margin limit", margin_mid, "mid mass", m_mid)
+    assert out["min_margin_cal"] == margin_mid and out["min_rail_speed_mps"] == v_nominal
+    # the limit is active: the mass stops where the margin reaches it (d margin / d mass ~ 0.07 cal/kg)
+    assert out["ballast_kg"] == pytest.approx(m_mid, abs=5e-3)
+    flown = simulate(calisto, parameters={"ballast_mass": out["ballast_kg"], "ballast_x": x}).summary_values
+    assert flown["static_margin_rail_exit_cal"] >= margin_mid - 1e-4
+    assert flown["rail_exit_speed_mps"] >= v_nominal
+    # the card: the robust ballast's flight and the solver's check, the same numbers as the JSON
+    assert card.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    fc = out["flight_card"]
+    for key in ("ballast_kg", "ballast_x_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal",
+                "static_margin_min_cal", "apogee_agl_m", "target_agl_m"):
+        assert fc[key] == out[key], key
+    assert fc["probability_in_band"] == out["check_probability_in_band"]      # same samples, same seed
+    assert fc["samples"] == out["check_samples"] == 40 and fc["band_m"] == out["band_m"]
+    for key in ("ballast_kg", "nominal_ballast_kg", "check_probability_in_band", "check_probability_gain"):
+        assert fc["robust"][key] == out[key]
+    lines = "\n".join(fc["lines"])
+    assert f"{out['ballast_kg']:.3f} kg: P(+-50 m) {out['check_probability_in_band']:.3f}" in lines
+    assert f"{out['nominal_ballast_kg']:.3f} kg: P(+-50 m) {out['check_nominal_probability_in_band']:.3f}" in lines
 
 
 def _confirm(setup, spec_path, target, expect_gain):
