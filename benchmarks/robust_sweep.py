@@ -15,7 +15,9 @@ For one example (default Calisto, 3000 m AGL, its ``dispersions.toml``):
    mass on the common samples, with the standard error of its difference to
    the nominal (paired: the same samples);
 4. the SAA the robust solver runs, repeated on random subsets of N of these
-   samples (N = 40, 160, 640): the mass it picks, judged on all samples;
+   samples (N = 40, 160, 640): the mass it picks, judged on all samples; and
+   on a surrogate of the flights (linear fit + resampled residuals), the SAA
+   from 40 independent draws against a 40-point Latin hypercube;
 5. optionally (``--positions``) the same at other ballast positions, each
    with its own nominal mass.
 
@@ -50,6 +52,42 @@ def in_band(apogee, target, band):
     return (np.abs(np.asarray(apogee) - target) <= band).astype(float)
 
 
+def linear_fit(apogee, P, spec):
+    """Least-squares apogee = c + sum_j b_j xi_j on the dispersed parameters: (names, b, c, residuals)."""
+    names = list(spec.parameters)
+    X = np.vstack([P[params.index(n)] for n in names]).T
+    coef, *_ = np.linalg.lstsq(np.hstack([X, np.ones((X.shape[0], 1))]), apogee, rcond=None)
+    return names, coef[:-1], coef[-1], apogee - X @ coef[:-1] - coef[-1]
+
+
+def saa_design_study(a_0, slope, P, p_nom, spec, masses, m0, probs, target, band, label, repeats=300):
+    """The SAA pick from N independent draws vs an N-point Latin hypercube, on a surrogate of the
+    flights (the linear fit on the dispersed parameters plus a residual and a slope resampled from
+    the flown samples), judged on the flown samples' P(in band) curve."""
+    from ironbark_opt.optimise.robust import silverman_width, smoothed_objective
+
+    names, b, c, resid = linear_fit(a_0, P, spec)
+    rows = [params.index(n) for n in names]
+    rng = np.random.default_rng(1)
+    dms = masses - m0
+    n = 40
+    for design, factor in (("independent", 1), ("latin hypercube", 1), ("latin hypercube", 2),
+                           ("latin hypercube", 4)):
+        gains = []
+        for _ in range(repeats):
+            Q = (spec.sample if design == "independent" else spec.sample_lhs)(n, p_nom, rng)
+            k = rng.integers(0, a_0.size, n)
+            a = c + b @ Q[rows] + resid[k]
+            s = slope[k]
+            h = factor * silverman_width(a)
+            f = [smoothed_objective(a + s * dm, target, "in_band", band, h)[0] for dm in dms]
+            gains.append(probs[int(np.argmin(f))] - probs[80])
+        g = np.array(gains)
+        print(f"  [{label}] surrogate SAA, {n} samples by {design}, kernel {factor} x Silverman ({repeats} draws):"
+              f" gain in P(in band) mean {g.mean():+.4f}, 5-95 % {np.percentile(g, 5):+.4f} .. "
+              f"{np.percentile(g, 95):+.4f}")
+
+
 def describe(apogee, target, band, P, spec):
     a = np.asarray(apogee)
     d = a - target
@@ -72,16 +110,27 @@ def describe(apogee, target, band, P, spec):
         print(f"    {names[j]:22s} {100 * share[j]:6.1f} %   ({coef[j] * Xc[:, j].std():+7.1f} m per std)")
 
 
-def sweep(model, P, m0, x0, delta, target, band, label):
+def sweep(model, P, m0, x0, delta, target, band, label, cache=None):
     """Per-sample quadratic in the mass from three runs; returns (masses, P(in band), stderr of the
-    paired difference to m0, apogees at m0, coefficients)."""
+    paired difference to m0, apogees at m0, coefficients).  ``cache``: a folder keeping the runs."""
+    import hashlib
+
     runs = []
     for m in (m0 - delta, m0, m0 + delta):
         Q = P.copy()
         Q[I_M], Q[I_X] = m, x0
+        path = None
+        if cache:
+            path = Path(cache) / (hashlib.sha256(Q.tobytes()).hexdigest()[:20] + ".npy")
+            if path.exists():
+                runs.append(np.load(path))
+                continue
         t = time.perf_counter()
         runs.append(model.run_batch(Q)["apogee_agl"])
         print(f"  [{label}] {P.shape[1]} flights at {m:.3f} kg, x {x0:.3f} m: {time.perf_counter() - t:.0f} s")
+        if path is not None:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            np.save(path, runs[-1])
     a_lo, a_0, a_hi = runs
     slope = (a_hi - a_lo) / (2 * delta)
     curv = (a_hi - 2 * a_0 + a_lo) / delta ** 2
@@ -126,6 +175,8 @@ def main():
     ap.add_argument("--delta", type=float, default=None, help="mass step [kg] (default: 40 m of apogee)")
     ap.add_argument("--positions", default="", help="other ballast positions [m], comma-separated")
     ap.add_argument("--plot")
+    ap.add_argument("--cache", help="folder keeping the flown apogees (a rerun reads them)")
+    ap.add_argument("--skip-direct", action="store_true", help="no direct run at the best mass")
     args = ap.parse_args()
     setup = load_setup(ROOT / "examples" / args.rocket / f"{args.rocket}.toml")
     spec = load_spec(ROOT / "examples" / args.rocket / "dispersions.toml")
@@ -134,6 +185,7 @@ def main():
     print(f"{args.rocket}: target {TARGETS[args.rocket]}, {args.samples} samples, seed {seed}, band "
           f"+/- {args.band:.0f} m")
     positions = [None] + [float(x) for x in args.positions.split(",") if x]
+    inside = {}                        # each position's best mass: in-band flags (the samples are common)
     curves = []
     for x in positions:
         nom = solve_ballast(setup, TARGETS[args.rocket], ballast_x=x)
@@ -150,23 +202,32 @@ def main():
             delta = min(max(40.0 / abs((a1[1] - a1[0]) / 0.1), 0.01), m0 if m0 > 0.02 else 1.0)
         else:
             delta = args.delta
-        masses, probs, errs, a_0, (slope, curv) = sweep(model, P, m0, x0, delta, target, args.band, label)
+        if x is None:
+            in_band_nominal = None
+        masses, probs, errs, a_0, (slope, curv) = sweep(model, P, m0, x0, delta, target, args.band, label,
+                                                        args.cache)
         describe(a_0, target, args.band, P, spec)
+        if in_band_nominal is None:
+            in_band_nominal = in_band(a_0, target, args.band)
         k = int(np.argmax(probs))
         print(f"  [{label}] sweep {masses[0]:.3f} .. {masses[-1]:.3f} kg: P(in band) {probs.min():.4f} .. "
               f"{probs.max():.4f}; best {masses[k]:.4f} kg (apogee shift {np.mean(slope) * (masses[k] - m0):+.1f} m):"
               f" P {probs[k]:.4f}, gain over nominal {probs[k] - probs[80]:+.4f} +/- {errs[k]:.4f} (paired "
               f"stderr; optimistic: the best of 161 points on the same samples)")
-        Q = P.copy()
-        Q[I_M], Q[I_X] = masses[k], x0
-        direct = model.run_batch(Q)["apogee_agl"]
-        dm = masses[k] - m0
-        interp = a_0 + slope * dm + 0.5 * curv * dm * dm
-        pd = in_band(direct, target, args.band).mean()
-        print(f"  [{label}] direct run at the best mass: P {pd:.4f} (interpolation max error "
-              f"{np.max(np.abs(direct - interp)):.3f} m)")
+        if not args.skip_direct:
+            Q = P.copy()
+            Q[I_M], Q[I_X] = masses[k], x0
+            direct = model.run_batch(Q)["apogee_agl"]
+            dm = masses[k] - m0
+            interp = a_0 + slope * dm + 0.5 * curv * dm * dm
+            pd = in_band(direct, target, args.band).mean()
+            print(f"  [{label}] direct run at the best mass: P {pd:.4f} (interpolation max error "
+                  f"{np.max(np.abs(direct - interp)):.3f} m)")
         curves.append((label, masses, probs, errs, m0, probs[80]))
+        dm = masses[k] - m0
+        inside[label] = in_band(a_0 + slope * dm + 0.5 * curv * dm * dm, target, args.band), masses[k]
         saa_noise(a_0, slope, curv, masses, m0, probs, target, args.band, label)
+        saa_design_study(a_0, slope, P, p_nom, spec, masses, m0, probs, target, args.band, label)
         # Out-of-sample look at the gain: pick the best mass on one half, measure it on the other.
         half = args.samples // 2
         for tr, te in ((slice(0, half), slice(half, None)), (slice(half, None), slice(0, half))):
@@ -181,6 +242,15 @@ def main():
             g = test - base
             print(f"  [{label}] best mass on one half {masses[kk]:.4f} kg; on the other half its gain "
                   f"{g.mean():+.4f} +/- {g.std(ddof=1) / math.sqrt(g.size):.4f}")
+    if len(inside) > 1:
+        labels = list(inside)
+        base_label = labels[0]
+        for label in labels:
+            flags, m = inside[label]
+            g = flags - in_band_nominal
+            print(f"best mass {m:.4f} kg at {label} vs the nominal ballast at {base_label}: P {flags.mean():.4f} vs "
+                  f"{in_band_nominal.mean():.4f}, gain {g.mean():+.4f} +/- {g.std(ddof=1) / math.sqrt(g.size):.4f} "
+                  f"(paired, same samples)")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")

@@ -14,7 +14,13 @@ by the sample-average approximation (SAA): one fixed set of ``N`` samples
 samples, so the objective is a deterministic smooth function of ``w``) and
 IPOPT on the sample mean, started from the nominal solution (Shapiro,
 Dentcheva & Ruszczynski, *Lectures on Stochastic Programming: Modeling and
-Theory*, SIAM 2009, ch. 5, the SAA method and its consistency).
+Theory*, SIAM 2009, ch. 5, the SAA method and its consistency).  The ``N``
+samples are a Latin hypercube of the spec by default: with N = 40 independent
+draws the SAA's optimum moves with the draw's own location (on Calisto's
+spec it picks a ballast worse than the nominal by 0.015 in P(in band) on
+average, ``benchmarks/robust_sweep.py``), and stratifying each marginal
+removes most of that noise for an apogee that is nearly additive in the
+dispersed parameters.
 
 The indicator and ``|.|`` are not differentiable, so each sample's apogee is
 smoothed by a Gaussian kernel of width ``h`` (kernel estimate of the CDF,
@@ -60,6 +66,8 @@ from ironbark_opt import params
 from ironbark_opt.errors import InputError, SolverError
 
 OBJECTIVES = ("in_band", "expected_abs_miss")
+#: how the SAA samples are drawn from the spec
+DESIGNS = ("latin_hypercube", "independent")
 #: the nominal parameters' flight at each ballast, reported as the nominal ballast solution reports it
 _FLOWN = ("apogee_agl_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal", "static_margin_min_cal")
 
@@ -287,6 +295,7 @@ class RobustBallastSolution:
     check_seed: int
     values: Mapping[str, float]
     nominal: object = field(repr=False)
+    design: str = "latin_hypercube"
 
     def __repr__(self) -> str:
         v = self.values
@@ -301,7 +310,7 @@ class RobustBallastSolution:
 
     def to_dict(self) -> dict:
         out = {"rocket": self.name, "motor": self.motor, "robust": True, "objective": self.objective,
-               "samples": self.samples, "seed": self.seed, "check_seed": self.check_seed}
+               "samples": self.samples, "design": self.design, "seed": self.seed, "check_seed": self.check_seed}
         out.update(self.values)
         out["nominal_solution"] = {k: v for k, v in self.nominal.to_dict().items() if k != "parameters"}
         return out
@@ -310,7 +319,8 @@ class RobustBallastSolution:
         v = self.values
         b = v["band_m"]
         lines = [f"Robust ballast for {self.name} on {self.motor}: objective {self.objective}, "
-                 f"{self.samples} samples (seed {self.seed}), kernel width {v['kernel_width_m']:.1f} m",
+                 f"{self.samples} samples ({self.design.replace('_', ' ')}, seed {self.seed}), kernel width "
+                 f"{v['kernel_width_m']:.1f} m",
                  f"  target             {v['target_agl_m']:10.1f} m AGL, band +/- {b:.0f} m",
                  f"  {'':18s} {'ballast [kg]':>12s} {'x [m]':>7s} {'P(in band)':>17s} {'E|miss| [m]':>16s}"]
         checked = "check_probability_in_band" in v
@@ -375,6 +385,7 @@ def check_ballasts(model, spec, p_nominal, ballasts, target_agl, band, samples, 
 
 def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", band: float = 50.0,
                          samples: int = 40, seed: int | None = None, check_samples: int = 1000,
+                         design: str = "latin_hypercube",
                          check_seed: int | None = None, free_position: bool = False,
                          mass_max: float | None = None, x_range=None, ballast_x: float | None = None,
                          min_rail_speed: float | None = None, min_margin: float | None = None,
@@ -399,6 +410,14 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
         Fresh samples of the independent check of both ballasts (0: no check).
     check_seed : int, optional
         Seed of the check (default: ``seed + 1``, never the SAA seed).
+    design : "latin_hypercube" or "independent"
+        How the SAA samples are drawn (the check's are always independent).  A
+        Latin hypercube (:meth:`DispersionSpec.sample_lhs`) gives the SAA objective far
+        less sampling noise for the same N: the apogee is nearly additive in the
+        dispersed parameters (a linear fit explains 99 % of its variance on Calisto,
+        ``benchmarks/robust_sweep.py``), and stratifying each marginal removes that
+        part of the variance (Stein 1987); for SAA with Latin hypercube samples see
+        Homem-de-Mello & Bayraksan, Surveys in OR and Management Science 19(1), 2014.
     free_position, mass_max, x_range, ballast_x, parameters
         As in :func:`~ironbark_opt.optimise.ballast.solve_ballast`.
     min_rail_speed : float, optional [m/s]
@@ -416,6 +435,8 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
     from ironbark_opt.flight import flight_model, simulate
     from ironbark_opt.optimise.ballast import _bounds, solve_ballast
 
+    if design not in DESIGNS:
+        raise InputError(f"design must be one of {', '.join(DESIGNS)}, got {design!r}", field="design")
     if objective not in OBJECTIVES:
         raise InputError(f"objective must be one of {', '.join(OBJECTIVES)}, got {objective!r}", field="objective")
     if not (isinstance(band, (int, float)) and math.isfinite(band) and band > 0):
@@ -443,7 +464,8 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
     m_max, x_bay = _bounds(setup, mass_max, x_range)
     model = flight_model(setup)
     p_nom = np.array([nominal.parameters[n] for n in params.NAMES])
-    P = spec.sample(int(samples), p_nom, np.random.default_rng(seed))
+    draw = spec.sample_lhs if design == "latin_hypercube" else spec.sample
+    P = draw(int(samples), p_nom, np.random.default_rng(seed))
     start = model.run_batch(P)
     width = silverman_width(start["apogee_agl"])
     apogees = SampleApogees(model, P, start["t_rail"], start["t_apogee"], free_position)
@@ -525,4 +547,4 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
                       check_time_s=time.perf_counter() - t_start - solve_time)
     return RobustBallastSolution(name=setup.name, motor=getattr(setup.motor, "designation", "motor"),
                                  objective=objective, samples=int(samples), seed=seed, check_seed=check_seed,
-                                 values=values, nominal=nominal)
+                                 values=values, nominal=nominal, design=design)

@@ -9,9 +9,9 @@ Fast tests (default run, CasADi VM):
 - a small solve (8 samples): the robust ballast does not score worse than
   the nominal on its own (smoothed) objective, and the solver's fresh-sample check
   equals an independent ``montecarlo`` run of the same seed;
-- ``ballast --robust`` with --min-margin/--min-rail-speed: an active margin
-  limit stops the ballast where ``simulate`` (independent numeric flight) puts
-  the margin on the limit; its --card prints the robust answer, the card's
+- ``ballast --robust`` with --min-margin/--min-rail-speed: an active limit
+  stops the ballast where ``simulate`` (independent numeric flight) puts the
+  margin or the rail-exit speed on it; its --card prints the robust answer, the card's
   numbers equal the JSON's and its P(in band) is the solver's check.
 
 Slow test (``-m slow``): Calisto and Kestrel with their example dispersion
@@ -130,27 +130,34 @@ def test_cli_robust_limits_and_card(calisto, small_solve, tmp_path):
     free = small_solve.values
     x = free["ballast_x_m"]
     m_mid = 0.5 * (free["ballast_kg"] + free["nominal_ballast_kg"])
-    # unconstrained, the 8-sample SAA takes ballast out (1.23 of 1.58 kg, the margin drops with it):
-    # a minimum margin equal to the one at the midpoint mass must stop it there
-    assert free["ballast_kg"] < m_mid and free["static_margin_rail_exit_cal"] < free["nominal_static_margin_rail_exit_cal"]
-    margin_mid = simulate(calisto, parameters={"ballast_mass": m_mid, "ballast_x": x}).summary_values[
-        "static_margin_rail_exit_cal"]
-    v_nominal = free["nominal_rail_exit_speed_mps"]         # satisfied by every lighter ballast: inactive
+    # Ballast forward of the loaded CG: less ballast, less margin and a faster rail exit.  A limit
+    # equal to the flight's value at the midpoint mass, on the side the unconstrained SAA moved
+    # away from, must stop the ballast there; the other limit is set at the nominal ballast's
+    # value, on the side the solve moves towards (satisfied: inactive).
+    lighter = free["ballast_kg"] < free["nominal_ballast_kg"]
+    assert abs(free["ballast_kg"] - free["nominal_ballast_kg"]) > 0.02           # it moved
+    assert (free["static_margin_rail_exit_cal"] < free["nominal_static_margin_rail_exit_cal"]) == lighter
+    mid = simulate(calisto, parameters={"ballast_mass": m_mid, "ballast_x": x}).summary_values
+    if lighter:
+        limits = {"--min-margin": mid["static_margin_rail_exit_cal"],
+                  "--min-rail-speed": free["nominal_rail_exit_speed_mps"]}
+    else:
+        limits = {"--min-rail-speed": mid["rail_exit_speed_mps"],
+                  "--min-margin": free["nominal_static_margin_rail_exit_cal"]}
     card = tmp_path / "card.png"
-    res = CliRunner().invoke(main, ["ballast", str(CALISTO), "--target", "3000m", "--robust", "--spec",
-                                    str(CALISTO_SPEC), "--samples", "8", "--check-samples", "40", "--seed", "11",
-                                    "--min-margin", repr(margin_mid), "--min-rail-speed", repr(v_nominal),
-                                    "--card", str(card), "--json"])
+    argv = ["ballast", str(CALISTO), "--target", "3000m", "--robust", "--spec", str(CALISTO_SPEC), "--samples", "8",
+            "--check-samples", "40", "--seed", "11", "--card", str(card), "--json"]
+    res = CliRunner().invoke(main, argv + [t for k, v in limits.items() for t in (k, repr(v))])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     print({k: out[k] for k in ("ballast_kg", "static_margin_rail_exit_cal", "rail_exit_speed_mps",
-                               "check_probability_in_band")}, "margin limit", margin_mid, "mid mass", m_mid)
-    assert out["min_margin_cal"] == margin_mid and out["min_rail_speed_mps"] == v_nominal
-    # the limit is active: the mass stops where the margin reaches it (d margin / d mass ~ 0.07 cal/kg)
+                               "check_probability_in_band")}, "limits", limits, "mid mass", m_mid)
+    assert out["min_margin_cal"] == limits["--min-margin"] and out["min_rail_speed_mps"] == limits["--min-rail-speed"]
+    # the active limit stops the mass where the flight reaches it
     assert out["ballast_kg"] == pytest.approx(m_mid, abs=5e-3)
     flown = simulate(calisto, parameters={"ballast_mass": out["ballast_kg"], "ballast_x": x}).summary_values
-    assert flown["static_margin_rail_exit_cal"] >= margin_mid - 1e-4
-    assert flown["rail_exit_speed_mps"] >= v_nominal
+    assert flown["static_margin_rail_exit_cal"] >= limits["--min-margin"] - 1e-4
+    assert flown["rail_exit_speed_mps"] >= limits["--min-rail-speed"] - 1e-4
     # the card: the robust ballast's flight and the solver's check, the same numbers as the JSON
     assert card.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     fc = out["flight_card"]
