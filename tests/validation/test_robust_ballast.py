@@ -9,6 +9,9 @@ Fast tests (default run, CasADi VM):
 - a small solve (8 samples): the robust ballast does not score worse than
   the nominal on its own (smoothed) objective, and the solver's fresh-sample check
   equals an independent ``montecarlo`` run of the same seed;
+- an SAA gain below the significance bar keeps the nominal ballast (the
+  same SAA optimum, reported; the paired check shows no change); the t
+  statistic against a hand-computed one;
 - ``ballast --robust`` with --min-margin/--min-rail-speed: an active limit
   stops the ballast where ``simulate`` (independent numeric flight) puts the
   margin or the rail-exit speed on it; its --card prints the robust answer, the card's
@@ -36,7 +39,7 @@ from ironbark_opt import params
 from ironbark_opt.analysis.distributions import load_spec
 from ironbark_opt.analysis.montecarlo import montecarlo
 from ironbark_opt.flight import flight_model
-from ironbark_opt.optimise.robust import SampleApogees, smoothed_objective, solve_robust_ballast
+from ironbark_opt.optimise.robust import SampleApogees, gain_t, smoothed_objective, solve_robust_ballast
 from ironbark_opt.vehicle import load_setup
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -116,6 +119,31 @@ def test_small_robust_solve_and_its_check(calisto, small_solve):
     assert d["robust"] is True and d["nominal_solution"]["ballast_kg"] == v["nominal_ballast_kg"]
 
 
+def test_insignificant_saa_gain_keeps_the_nominal_ballast(calisto, small_solve):
+    """The same SAA problem with a significance bar above its t statistic: the same SAA optimum,
+    reported, but the nominal ballast is the answer, and the paired check then shows no change."""
+    free = small_solve.values
+    assert free["saa_gain_t"] > 0 and not small_solve.kept_nominal
+    sol = solve_robust_ballast(calisto, "3000m", CALISTO_SPEC, samples=8, check_samples=40, seed=11,
+                               min_gain_t=free["saa_gain_t"] + 1.0)
+    v = sol.values
+    print(sol.summary())
+    assert sol.kept_nominal and sol.to_dict()["kept_nominal"] is True
+    assert v["saa_optimum_ballast_kg"] == pytest.approx(free["ballast_kg"], abs=1e-9)
+    assert v["saa_gain_t"] == pytest.approx(free["saa_gain_t"], rel=1e-9)
+    assert v["ballast_kg"] == v["nominal_ballast_kg"] and v["ballast_x_m"] == v["nominal_ballast_x_m"]
+    assert v["check_probability_gain"] == 0.0 and v["check_probability_in_band"] == free["check_nominal_probability_in_band"]
+    assert "not significant, the nominal ballast kept" in sol.summary()
+
+
+def test_gain_t_is_the_paired_t_statistic():
+    nominal = np.array([0.0, 0.0, 0.0, 0.0])
+    robust = np.array([-1.0, -2.0, -3.0, -2.0])            # minimised terms: every sample improves
+    # improvements 1, 2, 3, 2: mean 2, standard deviation (ddof 1) sqrt(2/3), n = 4
+    assert gain_t(nominal, robust) == pytest.approx(2.0 / (math.sqrt(2.0 / 3.0) / 2.0), rel=1e-12)
+    assert gain_t(nominal, nominal - 1.0) == math.inf and gain_t(nominal, nominal) == 0.0
+
+
 def test_cli_robust_limits_and_card(calisto, small_solve, tmp_path):
     """``ballast --robust`` honours --min-margin/--min-rail-speed on the nominal parameters' flight
     (checked by ``simulate``, an independent numeric flight), and its --card prints the robust
@@ -146,7 +174,7 @@ def test_cli_robust_limits_and_card(calisto, small_solve, tmp_path):
                   "--min-margin": free["nominal_static_margin_rail_exit_cal"]}
     card = tmp_path / "card.png"
     argv = ["ballast", str(CALISTO), "--target", "3000m", "--robust", "--spec", str(CALISTO_SPEC), "--samples", "8",
-            "--check-samples", "40", "--seed", "11", "--card", str(card), "--json"]
+            "--check-samples", "40", "--seed", "11", "--min-gain-t", "0", "--card", str(card), "--json"]
     res = CliRunner().invoke(main, argv + [t for k, v in limits.items() for t in (k, repr(v))])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
@@ -202,9 +230,12 @@ def _confirm(setup, spec_path, target, expect_gain):
         assert gain.mean() > -2 * se_gain
 
 
-# Calisto's shipped spec is centred on the file's nominal flight (mean apogee within ~2 m of it), so
-# the best ballast under it is the nominal one to within the SAA's noise: measured +0.001 +/- 0.008
-# on 1,000 samples.  Kestrel's spec describes a June launch day (+14 ... +29 K over the file's ISA).
+# Calisto's shipped spec is centred on the file's nominal flight, so no ballast does measurably better
+# than the nominal one (benchmarks/robust_sweep.py, 5,000 samples at the nominal ballast: apogee median
+# 2993.2 m for the 3000 m target, std 71.7 m, skewness +0.05; thrust and drag carry 80 % of the
+# variance; the best mass of a sweep, 1.542 kg vs 1.577, gains +0.0052 +/- 0.0036, in-sample and so
+# optimistic).  The done-when's "raises P on Calisto" cannot be confirmed by 5,000 samples; the test
+# asks that nothing is lost.  Kestrel's spec describes a June launch day (+14 ... +29 K over the file's ISA).
 @pytest.mark.slow
 @pytest.mark.parametrize("rocket, spec, target, expect_gain", [(CALISTO, CALISTO_SPEC, "3000m", False),
                                                                 (KESTREL, KESTREL_SPEC, "10000ft", True)])
