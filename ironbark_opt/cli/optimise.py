@@ -48,6 +48,9 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--check-samples", type=int, default=1000, show_default=True,
               help="--robust: fresh samples checking both ballasts (another seed; 0: none).")
 @click.option("--seed", type=int, help="--robust: seed of the samples (default: the spec's; the check uses seed+1).")
+@click.option("--select-samples", type=int, default=200, show_default=True,
+              help="--robust: fresh samples on which the SAA optimum must beat the nominal ballast to replace "
+                   "it (another seed; 0: no validation).")
 @click.option("--min-gain-t", type=float,
               help="--robust: keep the nominal ballast unless the SAA optimum's in-sample improvement has a "
                    "paired t statistic of at least this (its own sampling error; default: take the optimum).")
@@ -84,7 +87,7 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, robust, spec_path, band, samples, check_samples, seed,
-                    min_gain_t,
+                    select_samples, min_gain_t,
                     atmosphere, atmosphere_time, forecast, site, time,
                     min_rail_speed, min_margin, max_ballast, ballast_x, free_position, rail_exit, solve_for,
                     table, calibration_path, processes, executor, plot_path, card_path, card_spec, card_samples,
@@ -185,7 +188,8 @@ def ballast_command(rocket, target, motors, objective, robust, spec_path, band, 
         from ironbark_opt.analysis.distributions import load_spec
         spec = load_spec(spec_path)
         solution = solve_robust_ballast(setup, target, spec, objective=objective, band=band, samples=samples,
-                                        seed=seed, check_samples=check_samples, min_gain_t=None if min_gain_t is None else
+                                        seed=seed, check_samples=check_samples, select_samples=select_samples,
+                                        min_gain_t=None if min_gain_t is None else
                                         number(min_gain_t, "--min-gain-t"),
                                         **kwargs)
         check_ascent_stability(setup, {"ballast_mass": solution.values["ballast_kg"],

@@ -115,7 +115,10 @@ class FlightCard:
         if r is None:
             return []
         rows = [("ROBUST BALLAST", ""),
-                ("chosen for", f"{r['objective']} under the dispersion spec ({r['samples']} SAA samples)")]
+                ("chosen for", f"{r['objective']} under the dispersion spec ({r['samples']} SAA samples)"),
+                ("SAA optimum", f"{r['saa_optimum_ballast_kg']:.3f} kg, in-sample gain t = {r['saa_gain_t']:.2f}"
+                                + {"t": ": not significant, nominal kept",
+                                   "selection": ": not better on fresh samples, nominal kept"}.get(r.get("kept_by"), ""))]
         if "check_probability_in_band" not in r:
             return rows + [("check", "none asked (--check-samples 0)")]
         for label, pre in (("nominal ballast", "nominal_"), ("robust ballast", "")):

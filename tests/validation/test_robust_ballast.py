@@ -9,6 +9,8 @@ Fast tests (default run, CasADi VM):
 - a small solve (8 samples): the robust ballast does not score worse than
   the nominal on its own (smoothed) objective, and the solver's fresh-sample check
   equals an independent ``montecarlo`` run of the same seed;
+- the fresh-sample validation of the SAA optimum against the nominal ballast
+  reproduces two independent ``montecarlo`` runs and decides by them;
 - an SAA gain below the significance bar keeps the nominal ballast (the
   same SAA optimum, reported; the paired check shows no change); the t
   statistic against a hand-computed one;
@@ -98,7 +100,9 @@ def test_smoothed_objective_gradient_and_limit(objective):
 
 @pytest.fixture(scope="module")
 def small_solve(calisto):
-    return solve_robust_ballast(calisto, "3000m", CALISTO_SPEC, samples=8, check_samples=40, seed=11)
+    # select_samples=0: the SAA optimum whatever it scores (tests of the machinery)
+    return solve_robust_ballast(calisto, "3000m", CALISTO_SPEC, samples=8, check_samples=40, seed=11,
+                                select_samples=0)
 
 
 def test_small_robust_solve_and_its_check(calisto, small_solve):
@@ -125,7 +129,7 @@ def test_insignificant_saa_gain_keeps_the_nominal_ballast(calisto, small_solve):
     free = small_solve.values
     assert free["saa_gain_t"] > 0 and not small_solve.kept_nominal
     sol = solve_robust_ballast(calisto, "3000m", CALISTO_SPEC, samples=8, check_samples=40, seed=11,
-                               min_gain_t=free["saa_gain_t"] + 1.0)
+                               select_samples=0, min_gain_t=free["saa_gain_t"] + 1.0)
     v = sol.values
     print(sol.summary())
     assert sol.kept_nominal and sol.to_dict()["kept_nominal"] is True
@@ -134,6 +138,28 @@ def test_insignificant_saa_gain_keeps_the_nominal_ballast(calisto, small_solve):
     assert v["ballast_kg"] == v["nominal_ballast_kg"] and v["ballast_x_m"] == v["nominal_ballast_x_m"]
     assert v["check_probability_gain"] == 0.0 and v["check_probability_in_band"] == free["check_nominal_probability_in_band"]
     assert "not significant, the nominal ballast kept" in sol.summary()
+
+
+def test_fresh_sample_validation_decides_as_an_independent_monte_carlo(calisto, small_solve):
+    """select_samples: the SAA optimum (the same as without validation) and the nominal ballast fly
+    fresh samples; the reported paired gain equals two independent montecarlo() runs of that seed,
+    and the answer is the SAA optimum exactly when that gain is positive."""
+    free = small_solve.values
+    sol = solve_robust_ballast(calisto, "3000m", CALISTO_SPEC, samples=8, check_samples=0, seed=11,
+                               select_samples=40)
+    v = sol.values
+    print(sol.summary())
+    assert v["select_seed"] not in (sol.seed, sol.check_seed)
+    assert v["saa_optimum_ballast_kg"] == pytest.approx(free["ballast_kg"], abs=1e-9)
+    p = {}
+    for label, mass in (("nominal", v["nominal_ballast_kg"]), ("saa", v["saa_optimum_ballast_kg"])):
+        mc = montecarlo(calisto, CALISTO_SPEC, 40, seed=v["select_seed"], target="3000m", band=50.0,
+                        parameters={"ballast_mass": mass, "ballast_x": v["ballast_x_m"]}, progress=False)
+        p[label] = mc.extra["probability_in_band"]
+    assert v["select_probability_gain"] == pytest.approx(p["saa"] - p["nominal"], abs=1e-12)
+    assert sol.kept_nominal == (p["saa"] - p["nominal"] <= 0)
+    assert sol.kept_by == ("selection" if sol.kept_nominal else None)
+    assert v["ballast_kg"] == (v["nominal_ballast_kg"] if sol.kept_nominal else v["saa_optimum_ballast_kg"])
 
 
 def test_gain_t_is_the_paired_t_statistic():
@@ -174,7 +200,8 @@ def test_cli_robust_limits_and_card(calisto, small_solve, tmp_path):
                   "--min-margin": free["nominal_static_margin_rail_exit_cal"]}
     card = tmp_path / "card.png"
     argv = ["ballast", str(CALISTO), "--target", "3000m", "--robust", "--spec", str(CALISTO_SPEC), "--samples", "8",
-            "--check-samples", "40", "--seed", "11", "--min-gain-t", "0", "--card", str(card), "--json"]
+            "--check-samples", "40", "--seed", "11", "--select-samples", "0", "--min-gain-t", "0",
+            "--card", str(card), "--json"]
     res = CliRunner().invoke(main, argv + [t for k, v in limits.items() for t in (k, repr(v))])
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
@@ -199,6 +226,7 @@ def test_cli_robust_limits_and_card(calisto, small_solve, tmp_path):
     lines = "\n".join(fc["lines"])
     assert f"{out['ballast_kg']:.3f} kg: P(+-50 m) {out['check_probability_in_band']:.3f}" in lines
     assert f"{out['nominal_ballast_kg']:.3f} kg: P(+-50 m) {out['check_nominal_probability_in_band']:.3f}" in lines
+    assert f"{out['saa_optimum_ballast_kg']:.3f} kg, in-sample gain t = {out['saa_gain_t']:.2f}" in lines
 
 
 def _confirm(setup, spec_path, target, expect_gain):
