@@ -3,7 +3,8 @@
 For Calisto (target 3000 m AGL) and Kestrel (10,000 ft AGL) with their example
 dispersion specs: one nominal ``solve_ballast`` (warm: model and NLP built),
 then ``solve_robust_ballast`` with the default 40 SAA samples and no check
-(the robust solve includes its own nominal solve, the starting point).  The
+(the robust solve includes its own nominal solve, the starting point, and the
+validation of the SAA optimum on 200 fresh samples per ballast).  The
 compiled per-sample event function is built (or loaded from the disk cache)
 by a first, untimed robust call; its one-off compile time is printed too.
 Goal: robust <= 10 x nominal.

@@ -48,6 +48,12 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @click.option("--check-samples", type=int, default=1000, show_default=True,
               help="--robust: fresh samples checking both ballasts (another seed; 0: none).")
 @click.option("--seed", type=int, help="--robust: seed of the samples (default: the spec's; the check uses seed+1).")
+@click.option("--select-samples", type=int, default=200, show_default=True,
+              help="--robust: fresh samples on which the SAA optimum must beat the nominal ballast to replace "
+                   "it (another seed; 0: no validation).")
+@click.option("--min-gain-t", type=float,
+              help="--robust: keep the nominal ballast unless the SAA optimum's in-sample improvement has a "
+                   "paired t statistic of at least this (its own sampling error; default: take the optimum).")
 @atmosphere_options
 @click.option("--min-rail-speed", type=float, help="Minimum rail-exit speed [m/s].")
 @click.option("--min-margin", type=float, help="Minimum static margin at rail exit [calibers].")
@@ -81,6 +87,7 @@ def forecast_atmosphere(setup, model: str | None, site: str | None, time: str | 
 @json_option
 @handle_errors
 def ballast_command(rocket, target, motors, objective, robust, spec_path, band, samples, check_samples, seed,
+                    select_samples, min_gain_t,
                     atmosphere, atmosphere_time, forecast, site, time,
                     min_rail_speed, min_margin, max_ballast, ballast_x, free_position, rail_exit, solve_for,
                     table, calibration_path, processes, executor, plot_path, card_path, card_spec, card_samples,
@@ -99,9 +106,7 @@ def ballast_command(rocket, target, motors, objective, robust, spec_path, band, 
     check_output_path(card_path, "--card", CARD_SUFFIXES)
     if card_spec is not None and card_path is None:
         raise click.UsageError("--card-spec needs --card FILE")
-    objective = _check_robust_options(robust, objective, spec_path, motors, solve_for, min_rail_speed, min_margin)
-    if robust and card_path is not None:
-        raise click.UsageError("--card is written for a nominal solve; it does not take --robust")
+    objective = _check_robust_options(robust, objective, spec_path, motors, solve_for, card_spec)
     if processes is not None and processes < 1:
         raise InputError(f"must be >= 1, got {processes}", field="--processes")
     for value, option in ((min_margin, "--min-margin"), (min_rail_speed, "--min-rail-speed")):
@@ -180,13 +185,19 @@ def ballast_command(rocket, target, motors, objective, robust, spec_path, band, 
         return
     if robust:
         from ironbark_opt.optimise.robust import solve_robust_ballast
-        kwargs = {k: v for k, v in kwargs.items() if k not in ("min_rail_speed", "min_margin")}
-        solution = solve_robust_ballast(setup, target, spec_path, objective=objective, band=band, samples=samples,
-                                        seed=seed, check_samples=check_samples, **kwargs)
+        from ironbark_opt.analysis.distributions import load_spec
+        spec = load_spec(spec_path)
+        solution = solve_robust_ballast(setup, target, spec, objective=objective, band=band, samples=samples,
+                                        seed=seed, check_samples=check_samples, select_samples=select_samples,
+                                        min_gain_t=None if min_gain_t is None else
+                                        number(min_gain_t, "--min-gain-t"),
+                                        **kwargs)
         check_ascent_stability(setup, {"ballast_mass": solution.values["ballast_kg"],
                                        "ballast_x": solution.values["ballast_x_m"]},
                                allow_unstable=allow_unstable)
-        _report(setup, solution, plot_path, None, flown, flown_line, as_json)
+        # the card's Monte Carlo is the solver's check (same spec, samples and seed): its P(in band) is the JSON's
+        card.update(spec=spec, samples=check_samples or card_samples, seed=solution.check_seed, band=band)
+        _report(setup, solution, plot_path, card, flown, flown_line, as_json)
         return
     solution = solve_ballast(setup, target, **kwargs)
     check_ascent_stability(setup, allow_unstable=allow_unstable, summary=solution.values)
@@ -211,7 +222,7 @@ def _at_optimum(solution) -> dict:
     return {"ballast_mass": solution.values["ballast_kg"], "ballast_x": solution.values["ballast_x_m"]}
 
 
-def _check_robust_options(robust, objective, spec_path, motors, solve_for, min_rail_speed, min_margin):
+def _check_robust_options(robust, objective, spec_path, motors, solve_for, card_spec):
     """The objective to use; usage errors for option combinations --robust does not take."""
     if not robust:
         if objective in ROBUST_OBJECTIVES or spec_path is not None:
@@ -221,8 +232,9 @@ def _check_robust_options(robust, objective, spec_path, motors, solve_for, min_r
         raise click.UsageError("--robust needs --spec dispersions.toml")
     if motors or solve_for != "ballast":
         raise click.UsageError("--robust solves the ballast of one motor (no --motor, no --solve)")
-    if min_rail_speed is not None or min_margin is not None:
-        raise click.UsageError("--robust takes no --min-rail-speed/--min-margin (the nominal solve shows them)")
+    if card_spec is not None:
+        raise click.UsageError("--robust: the card's Monte Carlo is the solver's check (--spec, --check-samples, "
+                               "seed + 1); no --card-spec")
     if objective is not None and objective not in ROBUST_OBJECTIVES:
         raise click.UsageError(f"--robust optimises {' or '.join(ROBUST_OBJECTIVES)}, not {objective}")
     return objective or "in_band"
@@ -240,9 +252,10 @@ def _plot(setup, solution, path):
     atomic_write(path, lambda tmp: plot_flight(flight, filename=tmp, atmosphere=atmosphere_label(setup)))
 
 
-def _card(setup, solution, result, *, path, spec, samples, time=None, site=None):
-    """Fly the optimum to landing (and ``spec``'s Monte Carlo around it), write
-    the flight card to ``path`` and add its numbers to ``result["flight_card"]``."""
+def _card(setup, solution, result, *, path, spec, samples, time=None, site=None, seed=None, band=None):
+    """Fly the optimum to landing (and ``spec``'s Monte Carlo around it: ``samples`` flights,
+    ``seed`` (default the spec's), P(in ``band``)), write the flight card to ``path`` and add
+    its numbers to ``result["flight_card"]``."""
     if not path or solution is None:
         return
     import matplotlib
@@ -254,8 +267,8 @@ def _card(setup, solution, result, *, path, spec, samples, time=None, site=None)
     disp = None
     if spec is not None:
         from ironbark_opt.analysis.montecarlo import montecarlo
-        disp = montecarlo(setup, spec, samples, descent=True, target=solution.values["target_agl_m"],
-                          parameters=at, progress=False)
+        disp = montecarlo(setup, spec, samples, seed=seed, descent=True, target=solution.values["target_agl_m"],
+                          band=band, parameters=at, progress=False)
     card = build_card(setup, flight, solution=solution, dispersion=disp,
                       apogee_per_100g_m=apogee_per_100g(setup, at), launch_time=time, site_name=site)
     atomic_write(path, lambda tmp: write_flight_card(tmp, card))

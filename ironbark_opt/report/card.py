@@ -61,6 +61,10 @@ class FlightCard:
     landing_north_m: float | None = None
     landing_distance_m: float | None = None
     landing_ellipse: Mapping[str, float] | None = None
+    #: a robust ballast solve (:class:`~ironbark_opt.optimise.robust.RobustBallastSolution`): the
+    #: nominal and the robust ballast, their P(in band) on the solver's fresh-sample check and its
+    #: standard errors, the paired gain, the objective and the sample counts
+    robust: Mapping | None = None
     #: the Monte Carlo and the nominal ground track (east, north) [m] (for the
     #: page's figures; not in :meth:`to_dict`)
     dispersion: object = field(default=None, repr=False, compare=False)
@@ -90,6 +94,7 @@ class FlightCard:
             rows.append((f"P(+-{self.band_m:.0f} m)", f"{self.probability_in_band:.3f} of the Monte Carlo flights "
                                                       f"within {self.band_m:.1f} m of the target"))
         rows.append(("apogee drift", f"{self.apogee_east_m:.1f} m east, {self.apogee_north_m:.1f} m north"))
+        rows += self._robust_rows()
         rows += [("RANGE SAFETY", ""), ("rail-exit speed", f"{self.rail_exit_speed_mps:.2f} m/s"),
                  ("stability margin", f"{self.static_margin_rail_exit_cal:.2f} cal at rail exit, "
                                       f"{self.static_margin_min_cal:.2f} cal minimum"),
@@ -105,6 +110,27 @@ class FlightCard:
             rows.append(("", f"centre {el['center_east_m']:.1f} m east, {el['center_north_m']:.1f} m north"))
         return rows
 
+    def _robust_rows(self) -> list[tuple[str, str]]:
+        r = self.robust
+        if r is None:
+            return []
+        rows = [("ROBUST BALLAST", ""),
+                ("chosen for", f"{r['objective']} under the dispersion spec ({r['samples']} SAA samples)"),
+                ("SAA optimum", f"{r['saa_optimum_ballast_kg']:.3f} kg, in-sample gain t = {r['saa_gain_t']:.2f}"
+                                + {"t": ": not significant, nominal kept",
+                                   "selection": ": not better on fresh samples, nominal kept"}.get(r.get("kept_by"), ""))]
+        if "check_probability_in_band" not in r:
+            return rows + [("check", "none asked (--check-samples 0)")]
+        for label, pre in (("nominal ballast", "nominal_"), ("robust ballast", "")):
+            rows.append((label, f"{r[pre + 'ballast_kg']:.3f} kg: P(+-{r['band_m']:.0f} m) "
+                                f"{r[f'check_{pre}probability_in_band']:.3f} +/- "
+                                f"{r[f'check_{pre}probability_in_band_stderr']:.3f}, E|miss| "
+                                f"{r[f'check_{pre}expected_abs_miss_m']:.1f} m"))
+        rows.append(("robust - nominal", f"P {r['check_probability_gain']:+.3f} +/- "
+                                         f"{r['check_probability_gain_stderr']:.3f} ({r['check_samples']} fresh "
+                                         f"flights, seed {r['check_seed']}, paired)"))
+        return rows
+
     def text_lines(self) -> list[str]:
         """:meth:`lines` as the strings placed on the page."""
         return [f"{label:<19s}{text}".rstrip() if text else label for label, text in self.lines()]
@@ -113,6 +139,7 @@ class FlightCard:
         """Unit-suffixed numbers and the printed lines (``lines``)."""
         out = {f.name: getattr(self, f.name) for f in fields(self) if f.compare}   # not the figures' data
         out["landing_ellipse"] = None if self.landing_ellipse is None else dict(self.landing_ellipse)
+        out["robust"] = None if self.robust is None else dict(self.robust)
         out["lines"] = self.text_lines()
         return out
 
@@ -148,8 +175,8 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
     setup : FlightSetup
     flight : Flight
         The nominal flight at the card's ballast (with descent for a landing point).
-    solution : BallastSolution, optional
-        Adds the target apogee.
+    solution : BallastSolution or RobustBallastSolution, optional
+        Adds the target apogee (and a robust solve's comparison with the nominal ballast).
     dispersion : Dispersion, optional
         Monte Carlo around the same ballast: the 5-95 % apogee band and the
         landing (or apogee) ellipse.
@@ -184,6 +211,8 @@ def build_card(setup, flight, *, solution=None, dispersion=None, apogee_per_100g
                   landing_distance_m=s["landing_distance_m"])
     if solution is not None:
         kw["target_agl_m"] = float(solution.values["target_agl_m"])
+        if getattr(solution, "check_seed", None) is not None:           # a RobustBallastSolution
+            kw["robust"] = {k: v for k, v in solution.to_dict().items() if k != "nominal_solution"}
     return FlightCard(rocket=flight.name, motor=designation, site=_site_text(setup, site_name),
                       launch_time=launch_time, atmosphere=atmosphere, rail=rail,
                       ballast_kg=p["ballast_mass"], ballast_x_m=p["ballast_x"], apogee_agl_m=s["apogee_agl_m"],
@@ -200,7 +229,7 @@ def _map(card, ax):
     disp = card.dispersion
     if disp is not None:
         from ironbark_opt.analysis.plots import plot_landing_ellipse
-        plot_landing_ellipse(disp, ax, atmosphere=_short(card.atmosphere))
+        plot_landing_ellipse(disp, ax, atmosphere=_short(card.atmosphere, 44))         # half a page wide
     else:
         ax.plot([0.0], [0.0], "k^", ms=8, label="launch rail")
         ax.set_xlabel("east [m]")
@@ -219,7 +248,7 @@ def _map(card, ax):
 def _band(card, ax):
     """Apogee histogram of the Monte Carlo with the 5-95 % band and the target."""
     from ironbark_opt.analysis.plots import plot_apogee_histogram
-    plot_apogee_histogram(card.dispersion, ax, atmosphere=_short(card.atmosphere))
+    plot_apogee_histogram(card.dispersion, ax, atmosphere=_short(card.atmosphere, 44))
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
 
 
@@ -247,14 +276,18 @@ def write_flight_card(path, card: FlightCard) -> None:
         fig = plt.figure(figsize=(8.27, 11.69))
         fig.text(0.06, 0.965, f"FLIGHT CARD  {card.rocket}", fontsize=18, weight="bold", va="top")
         fig.text(0.06, 0.935, f"{card.motor}   |   Ironbark-Opt {__version__}", fontsize=9, va="top", color="0.3")
-        y = 0.905
-        for (label, text), line in zip(card.lines(), card.text_lines()):
+        y, rows = 0.905, list(zip(card.lines(), card.text_lines()))
+        headings = sum(1 for (_, text), _ in rows if not text)
+        # rows down to 0.41 of the page at most (the figures keep 0.12 .. 0.37): a long card packs tighter
+        step = min(0.0185, (y - 0.41 - 0.006 * headings) / len(rows))
+        size = 9.5 * min(1.0, step / 0.0165)
+        for (label, text), line in rows:
             heading = not text
             if heading:
                 y -= 0.006
-            fig.text(0.06, y, line, family="monospace", fontsize=9.5 if not heading else 10,
+            fig.text(0.06, y, line, family="monospace", fontsize=size if not heading else size + 0.5,
                      weight="bold" if heading else "normal", va="top")
-            y -= 0.0185
+            y -= step
         top, bottom = min(y - 0.04, 0.37), 0.12         # room below the axes for the legends
         if card.dispersion is not None:
             _map(card, fig.add_axes([0.11, bottom, 0.36, top - bottom]))

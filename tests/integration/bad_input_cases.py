@@ -389,6 +389,11 @@ case("ballast-robust-objective-no-flag", ball_c + " --objective in_band", ["--ro
 case("ballast-robust-band-negative", rob_c + " --band -5", ["band"])
 case("ballast-robust-samples-few", rob_c + " --samples 2", ["samples"])
 case("ballast-robust-with-motor", rob_c + " --motor {CD}/Cesaroni_M1670.eng", ["--robust", "--motor"])
+case("ballast-robust-card-spec", rob_c + " --card {T}/card.png --card-spec {CD}/dispersions.toml",
+     ["--robust", "--card-spec"], outputs=["card.png"])
+case("ballast-robust-select-samples-negative", rob_c + " --select-samples -1", ["select_samples"])
+case("ballast-robust-min-gain-t-nan", rob_c + " --min-gain-t nan", ["--min-gain-t", "finite"])
+case("ballast-robust-min-rail-speed-text", rob_c + " --min-rail-speed fast", ["--min-rail-speed"])
 case("ballast-robust-spec-disperses-ballast", rob_c, ["dispersions.toml", "ballast_mass"],
      edits=[(CD_SPEC, None, '[parameters.ballast_mass]\ndistribution = "normal"\nstd = 0.1\n')])
 WIN = "window {C} --forecast rap --site spaceport --from 2025-06-20T15:00Z"

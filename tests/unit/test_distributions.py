@@ -146,3 +146,39 @@ def test_bad_toml_and_bad_sample_file_rows(tmp_path):
     assert info.value.source == str(tmp_path / "drag.csv") and info.value.line == 3
     with pytest.raises(InputError, match="not found"):
         load_spec(tmp_path / "missing.toml")
+
+
+def test_latin_hypercube_one_value_per_stratum_and_a_steadier_mean(tmp_path):
+    """sample_lhs: each dispersed parameter's n values fall one in each of the n equal-probability
+    strata of its own CDF (analytic: normal CDF, uniform, the file's resampling CDF); the mean of a
+    linear function over 40 columns varies far less than over 40 independent draws (for an
+    additive function LHS removes the marginal variance: Stein 1987), measured on 400 repeats."""
+    from scipy.special import ndtr
+
+    spec = load_spec(write(tmp_path, SPEC, csv="drag_scale\n1.1\n0.9\n1.0\n0.95\n"))
+    nominal = params.nominal_values()
+    n = 40
+    P = spec.sample_lhs(n, nominal, np.random.default_rng(3))
+    assert P.shape == (params.SIZE, n)
+    strata = {"thrust_scale": ndtr((P[params.index("thrust_scale")] - 1.0) / 0.02),
+              "inclination": ndtr((P[params.index("inclination")] - math.radians(84)) / math.radians(1)),
+              "wind_east": (P[params.index("wind_east")] + 3.0) / 8.0}
+    for name, cdf in strata.items():
+        assert sorted(np.floor(cdf * n).astype(int)) == list(range(n)), name
+    # the file's 4 values, each 10 times (resampling CDF: weight 1/4 each, sorted)
+    values, counts = np.unique(P[params.index("drag_scale")], return_counts=True)
+    assert list(values) == [0.9, 0.95, 1.0, 1.1] and list(counts) == [10] * 4
+    np.testing.assert_array_equal(P[params.index("rail_length")], nominal[params.index("rail_length")])
+    rng = np.random.default_rng(5)
+    w = {"thrust_scale": 1000.0, "wind_east": 10.0, "inclination": 500.0}
+
+    def f(Q):
+        return sum(c * Q[params.index(k)] for k, c in w.items()).mean()
+
+    iid = np.std([f(spec.sample(n, nominal, rng)) for _ in range(400)])
+    lhs = np.std([f(spec.sample_lhs(n, nominal, rng)) for _ in range(400)])
+    print(f"std of the 40-column mean: independent {iid:.4f}, latin hypercube {lhs:.4f}")
+    # independent: sqrt(sum c^2 var / n) = 5.0; stratified: far smaller (measured 0.31)
+    assert iid == pytest.approx(math.sqrt((1000 * 0.02) ** 2 + (10 * 8 / math.sqrt(12)) ** 2
+                                          + (500 * math.radians(1)) ** 2) / math.sqrt(n), rel=0.15)
+    assert lhs < 0.1 * iid
