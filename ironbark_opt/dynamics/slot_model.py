@@ -16,6 +16,7 @@ steps as on its own model.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 
 import numpy as np
 
@@ -79,7 +80,24 @@ class SlotFlightModel(FlightModel):
 
     def grid_for(self, motor, p_nominal) -> tuple[int, int, float]:
         """The RK4 grid ``motor``'s own model would choose (``_choose_grid`` on the
-        nominal parameters), flown here.  Needs ``n_boost`` to fit the slot."""
+        nominal parameters), flown here.  Needs ``n_boost`` to fit the slot.
+
+        Kept on disk with the model (:mod:`~ironbark_opt.dynamics.model_cache`), as a
+        motor's own model keeps its grid: keyed by this model's key, the motor's slot
+        data and ``p_nominal``, so the next ranking with this motor skips the ~30
+        stiffness eigenproblems and the probe flights of the choice."""
+        key = None
+        if self._key is not None:
+            data = self.slot.pack(motor).tobytes() + np.asarray(p_nominal, dtype=float).tobytes()
+            key = hashlib.sha256(repr(("grid", self._key)).encode() + data).hexdigest()[:24]
+            hit = model_cache.load(key)
+            if hit is not None:
+                return tuple(hit["grid"])
+        grid = self._choose_grid_for(motor, p_nominal)
+        model_cache.store(key, {"grid": grid})
+        return grid
+
+    def _choose_grid_for(self, motor, p_nominal) -> tuple[int, int, float]:
         n0 = initial_boost_steps(motor, p_nominal, self.steps)
         if n0 >= self.cap_boost:
             raise ValueError(f"{n0} boost steps do not fit a grid of {self.cap_boost}")
