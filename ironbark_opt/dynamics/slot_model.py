@@ -129,33 +129,39 @@ class SlotFlightModel(FlightModel):
             x = cols[-1][:, -1]
         return np.hstack(cols)
 
+    #: columns of the mapped outputs Function (see :meth:`_outputs_function`)
+    OUTPUT_BLOCK = 64
+
     def _outputs_function(self, phase: str, n: int):
-        """As :meth:`FlightModel._outputs_function`, for one parameter vector: ``p``
-        shared by the columns (``reduce_in``; mapped, the slot's ~1600 entries were
-        copied to every column: 64 us a sample) and the columns padded to a multiple
-        of 64 (copies of the last), so that every candidate's flight uses the same few
-        maps (each map costs ~17 ms to build).  Each column is the same call as
-        before: the same numbers.  A parameter matrix (one column a sample) takes the
-        per-sample map."""
+        """As :meth:`FlightModel._outputs_function`, for one parameter vector: one
+        map over :data:`OUTPUT_BLOCK` columns per phase with ``p`` shared by them
+        (``reduce_in``; mapped per column, the slot's ~1600 entries were copied to
+        every column: 64 us a sample), called on blocks of the samples (the last
+        padded with copies of its last column).  A map costs ~0.1 ms a column to
+        build, more than evaluating it, and every candidate has its own sample
+        counts: one small map serves them all.  Each column is the same call as
+        before, so the same numbers.  A parameter matrix (one column a sample)
+        takes the per-sample map."""
         per_sample = super()._outputs_function
-        base = self._out_cache[phase] if phase in self.__dict__.get("_out_cache", {}) else None
-        if base is None:
-            per_sample(phase, 1)
-            base = self._out_cache[phase]
-        cols = 64 * -(-n // 64)
+        if phase not in self.__dict__.get("_out_cache", {}):
+            per_sample(phase, 1)                       # builds (and compiles) the phase's base Function
         shared = self.__dict__.setdefault("_out_shared", {})
-        if (phase, cols) not in shared:
-            shared[(phase, cols)] = base.map(f"outputs_{phase}_shared", "serial", cols, [2], [])
+        k = self.OUTPUT_BLOCK
+        if phase not in shared:
+            shared[phase] = self._out_cache[phase].map(f"outputs_{phase}_shared", "serial", k, [2], [])
 
         def call(X, T, P):
             P = np.asarray(P, dtype=float)
             if P.ndim == 2 and P.shape[1] > 1:
                 return per_sample(phase, n)(X, T, P)
             X, T = np.asarray(X, dtype=float), np.asarray(T, dtype=float).reshape(1, -1)
-            if cols > n:
-                X = np.hstack([X, np.repeat(X[:, -1:], cols - n, axis=1)])
-                T = np.hstack([T, np.repeat(T[:, -1:], cols - n, axis=1)])
-            return np.array(shared[(phase, cols)](X, T, P.reshape(-1, 1)))[:, :n]
+            pad = -n % k
+            if pad:
+                X = np.hstack([X, np.repeat(X[:, -1:], pad, axis=1)])
+                T = np.hstack([T, np.repeat(T[:, -1:], pad, axis=1)])
+            P = P.reshape(-1, 1)
+            return np.hstack([np.array(shared[phase](X[:, i:i + k], T[:, i:i + k], P))
+                              for i in range(0, n + pad, k)])[:, :n]
         return call
 
     def _set_trajectory(self, phase: str, n: int):

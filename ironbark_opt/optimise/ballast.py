@@ -213,7 +213,10 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     # Fixed position, no flight constraints and no IPOPT options: the feasible set is
     # one point, the root of the equalities; Newton finds it (IPOPT if it does not).
     square = len(w0) == n_eq == len(lbg) and not ipopt_options
-    root = _newton(nlp["residual"], w0, par, lbw, ubw) if square else None
+    root = None
+    if square:
+        flights = [(0.0, lo), (frac * m_max, guess), (m_max, hi)]
+        root = _newton(nlp["residual"], _inverse_quadratic(w0, flights, target_agl, rail), par, lbw, ubw)
     if root is not None:
         wopt, stats = root[0], {"success": True, "return_status": "Solve_Succeeded", "iter_count": root[1]}
     else:
@@ -249,8 +252,9 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
 
 
 def _newton(residual, w0, par, lbw, ubw, max_iter: int = 30):
-    """``(w, iterations)``: root of the square system ``residual(w, par) = 0`` by Newton
-    from ``w0``, or None (left the bounds, singular, not converged: IPOPT takes over).
+    """``(w, iterations)``: root of the square system ``residual(w, par) = 0``
+    by Newton from ``w0``, or None (left the bounds, singular, not converged: IPOPT
+    takes over).
 
     The ballast problem with a fixed position and no flight constraints has as many
     equalities (rail residual, ``v_z(T) = 0``, ``z(T) = target``) as variables
@@ -258,10 +262,13 @@ def _newton(residual, w0, par, lbw, ubw, max_iter: int = 30):
     answer is the root, whatever the path to it.  The Jacobian is taken by forward
     differences (step 1e-7 relative; its error only slows the last digits of the
     convergence, never moves the root), then updated by Broyden's rank-one formula
-    while the residual falls at least tenfold per step: one Jacobian costs 3 residuals, where the AD Jacobian of the
-    compiled NLP costs 12-16 (measured with the motor slot: 56-81 ms against 4.8 ms),
-    and IPOPT evaluates it 5-6 times per solve.  Converged when every residual is
-    below 1e-8 (m, m/s) and the last step below 1e-10 relative.
+    (Broyden, Math. Comp. 19, 1965, eq. 4.12) while the residual falls at least tenfold
+    per step: one Jacobian costs 3 residuals, where the AD Jacobian of the compiled NLP
+    costs 12-16 (measured with the motor slot: 56-81 ms against 4.8 ms), and IPOPT
+    evaluates it 5-6 times per solve.  A step of an updated Jacobian that leaves the
+    bounds or does not reduce the residual is discarded and a fresh Jacobian taken.
+    Converged when every residual is below 1e-8 (m, m/s) and the last
+    step below 1e-10 relative.
     """
     lb, ub = np.asarray(lbw, dtype=float), np.asarray(ubw, dtype=float)
 
@@ -269,30 +276,52 @@ def _newton(residual, w0, par, lbw, ubw, max_iter: int = 30):
         return np.array(residual(w, par)).ravel()
 
     w = np.asarray(w0, dtype=float).copy()
+    J, fresh = None, False
     try:
         r = g(w)
-        J = None
         for it in range(1, max_iter + 1):
             if J is None:
                 h = 1e-7 * np.maximum(1.0, np.abs(w))
                 J = np.column_stack([(g(w + h[j] * np.eye(w.size)[j]) - r) / h[j] for j in range(w.size)])
+                fresh = True
             step = np.linalg.solve(J, r)
             w_new = w - step
-            if not (np.all(np.isfinite(w_new)) and np.all(w_new >= lb) and np.all(w_new <= ub)):
-                return None
-            r_new = g(w_new)
-            if not np.all(np.isfinite(r_new)):
-                return None
+            inside = np.all(np.isfinite(w_new)) and np.all(w_new >= lb) and np.all(w_new <= ub)
+            r_new = g(w_new) if inside else None
+            if r_new is None or not np.all(np.isfinite(r_new)) or \
+                    (not fresh and np.max(np.abs(r_new)) >= np.max(np.abs(r))):
+                if fresh:
+                    return None
+                J = None                   # an updated Jacobian failed: a fresh one here
+                continue
             if np.max(np.abs(r_new)) > 0.1 * np.max(np.abs(r)):
                 J = None                   # slow contraction: a fresh Jacobian at the new point
-            else:                          # Broyden's update (Broyden, Math. Comp. 19, 1965, eq. 4.12)
+            else:                          # Broyden's update
                 J = J + np.outer(r_new - r + J @ step, -step) / (step @ step)
+                fresh = False
             w, r = w_new, r_new
             if np.max(np.abs(r)) <= 1e-8 and np.all(np.abs(step) <= 1e-10 * (1.0 + np.abs(w))):
                 return w, it
     except (np.linalg.LinAlgError, RuntimeError):
         return None
     return None
+
+
+def _inverse_quadratic(w0, flights, target_agl: float, rail: bool) -> list:
+    """Newton's start ``(m_b, [t_rail,] T)``: ballast, rail-exit and apogee times of the
+    three bracketing flights ``[(m_b, run)]`` interpolated (Lagrange, quadratic) as
+    functions of their apogee at the target; ``w0`` if that leaves ``[0, m_max]``.
+    A start ~1 m from the target instead of the linear guess's ~100 m saves Newton
+    a few residuals."""
+    z = np.array([run["x_apogee"][2] for _, run in flights])
+    if len(np.unique(z)) < 3:
+        return w0
+    L = np.array([np.prod([(target_agl - z[j]) / (z[i] - z[j]) for j in range(3) if j != i]) for i in range(3)])
+    m = float(L @ [mb for mb, _ in flights])
+    if not flights[0][0] <= m <= flights[-1][0]:
+        return w0
+    t_rail, t_apo = (float(L @ [run[k] for _, run in flights]) for k in ("t_rail", "t_apogee"))
+    return [m] + ([t_rail] if rail else []) + [t_apo]
 
 
 def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_options):
