@@ -23,7 +23,7 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics import model_cache
 from ironbark_opt.dynamics import rhs as rhs_mod
-from ironbark_opt.dynamics.integrator import grid_fractions, jit_mode, padded_grid, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.integrator import cached_library, grid_fractions, jit_mode, padded_grid, phase_trajectory, rk4_step
 from ironbark_opt.dynamics.model import FlightModel, Steps, initial_boost_steps
 from ironbark_opt.motors.slot import MotorSlot
 
@@ -48,12 +48,13 @@ class SlotFlightModel(FlightModel):
         self.trajectory, self._run = {}, {}
         self.n_boost, self.n_coast, self.coast_grading = self.cap_boost, self.cap_coast, 1.0
         self._key = model_cache.model_key(self.setup, (self.steps, self.n_p))
-        cached = model_cache.load(self._key)
+        cached = model_cache.load(self._key, lazy=True)
         if cached is not None:
-            self.rhs = {ph: cached[f"rhs_{ph}"] for ph in ("rail", "boost", "coast")}
-            self.step = {ph: cached[f"step_{ph}"] for ph in ("rail", "boost", "coast")}
-            for ph in ("rail", "boost", "coast"):
-                self.trajectory[ph] = cached[f"traj_{ph}"]
+            # deserialised when first used: with the compiled libraries cached, a ranking
+            # needs the rail trajectory, the coast step and the right-hand sides symbolically
+            # (~0.15 s of Functions left on disk: the boost and coast trajectories)
+            self.rhs, self.step, self.trajectory = (model_cache.PhaseView(cached, f"{kind}_")
+                                                    for kind in ("rhs", "step", "traj"))
             self._build_events(cached["apex"])
         else:
             self.rhs = {ph: rhs_mod.build(self.setup, ph, n_p=self.n_p) for ph in ("rail", "boost", "coast")}
@@ -67,8 +68,16 @@ class SlotFlightModel(FlightModel):
                                           **{f"traj_{ph}": f for ph, f in self.trajectory.items()},
                                           "apex": self._apex})
         for ph in ("rail", "boost", "coast"):
-            self._run[ph] = self._compiled(self.trajectory[ph])
+            self._run[ph] = self._cached_run(ph) or self._compiled(self.trajectory[ph])
         self._apogee_run = self._compiled(self._apogee_event)
+
+    def _cached_run(self, phase: str):
+        """The compiled trajectory of ``phase`` if the cache has it, found by its name and
+        key (as :meth:`_compiled` names it) without loading the symbolic Function."""
+        if not self.jit or self._key is None:
+            return None
+        key = hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
+        return cached_library(f"traj_{phase}", key)
 
     # ------------------------------------------------------------ layout of p_ext
     def parameters(self, p, motor, grid: tuple[int, int, float]) -> np.ndarray:
