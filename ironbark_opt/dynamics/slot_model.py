@@ -23,7 +23,8 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics import model_cache
 from ironbark_opt.dynamics import rhs as rhs_mod
-from ironbark_opt.dynamics.integrator import cached_library, grid_fractions, jit_mode, padded_grid, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.integrator import (cached_library, grid_fractions, jit_mode, padded_grid,
+                                               phase_trajectory, rk4_step)
 from ironbark_opt.dynamics.model import FlightModel, Steps, initial_boost_steps
 from ironbark_opt.motors.slot import MotorSlot
 

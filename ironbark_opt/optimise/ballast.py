@@ -363,8 +363,9 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
     if compiled is not None:        # no graph to build: the closest-apogee NLP builds its own if ever needed
         def graph():
             return _nlp_graph(model, free_position, rail_speed, margin)
-        cache[key] = {"solve": _Lazy(lambda: ca.nlpsol("ballast", "ipopt", graph()[0] if square else compiled, opts)),
-                      "names": names, "equalities": 3, "rail_variable": True,   # rail residual, v_z(T) = 0, z(T) = target
+        solver = _Lazy(lambda: ca.nlpsol("ballast", "ipopt", graph()[0] if square else compiled, opts))
+        cache[key] = {"solve": solver, "names": names,
+                      "equalities": 3, "rail_variable": True,        # rail residual, v_z(T) = 0, z(T) = target
                       "residual": lambda w, p: compiled(w, p)[1],
                       "closest": lambda **kw: graph()[1](opts)(**kw)}
         return cache[key]
