@@ -21,6 +21,7 @@ import os
 import pickle
 import pickletools
 from pathlib import Path
+from typing import Mapping
 
 import casadi as ca
 
@@ -61,16 +62,61 @@ def _path(key: str) -> Path:
     return cache_root() / "models" / f"{key}.pkl"
 
 
-def load(key: str | None) -> dict | None:
-    """The stored model ``{name: Function or value}``, or None."""
+def load(key: str | None, *, lazy: bool = False) -> Mapping | None:
+    """The stored model ``{name: Function or value}``, or None.  ``lazy``: a
+    :class:`LazyFunctions` (each Function deserialised when first read)."""
     if key is None:
         return None
     try:
         with open(_path(key), "rb") as fh:
             doc = pickle.load(fh)
+        if lazy:
+            return LazyFunctions(doc)
         return {k: ca.Function.deserialize(v) if isinstance(v, str) else v for k, v in doc.items()}
     except Exception:          # noqa: BLE001 - missing, truncated or foreign file: rebuild
         return None
+
+
+class LazyFunctions(Mapping):
+    """A stored model whose Functions are deserialised on first access (each once)."""
+
+    def __init__(self, doc: dict):
+        self._doc, self._done = doc, {}
+
+    def __getitem__(self, name):
+        if name not in self._done:
+            value = self._doc[name]
+            self._done[name] = ca.Function.deserialize(value) if isinstance(value, str) else value
+        return self._done[name]
+
+    def __iter__(self):
+        return iter(self._doc)
+
+    def __len__(self) -> int:
+        return len(self._doc)
+
+
+class PhaseView(Mapping):
+    """``{phase: model[prefix + phase]}`` for rail, boost and coast, read when asked for."""
+
+    PHASES = ("rail", "boost", "coast")
+
+    def __init__(self, model: Mapping, prefix: str):
+        self._model, self._prefix = model, prefix
+
+    def __getitem__(self, phase):
+        if phase not in self.PHASES:
+            raise KeyError(phase)
+        return self._model[self._prefix + phase]
+
+    def __contains__(self, phase) -> bool:
+        return phase in self.PHASES
+
+    def __iter__(self):
+        return iter(self.PHASES)
+
+    def __len__(self) -> int:
+        return len(self.PHASES)
 
 
 def store(key: str | None, items: dict) -> None:

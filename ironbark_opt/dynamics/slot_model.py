@@ -16,13 +16,15 @@ steps as on its own model.
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 
 import numpy as np
 
 from ironbark_opt import params
 from ironbark_opt.dynamics import model_cache
 from ironbark_opt.dynamics import rhs as rhs_mod
-from ironbark_opt.dynamics.integrator import grid_fractions, jit_mode, padded_grid, phase_trajectory, rk4_step
+from ironbark_opt.dynamics.integrator import (cached_library, grid_fractions, jit_mode, padded_grid,
+                                               phase_trajectory, rk4_step)
 from ironbark_opt.dynamics.model import FlightModel, Steps, initial_boost_steps
 from ironbark_opt.motors.slot import MotorSlot
 
@@ -49,12 +51,13 @@ class SlotFlightModel(FlightModel):
         self.trajectory, self._run = {}, {}
         self.n_boost, self.n_coast, self.coast_grading = self.cap_boost, self.cap_coast, 1.0
         self._key = model_cache.model_key(self.setup, (self.steps, self.n_p))
-        cached = model_cache.load(self._key)
+        cached = model_cache.load(self._key, lazy=True)
         if cached is not None:
-            self.rhs = {ph: cached[f"rhs_{ph}"] for ph in ("rail", "boost", "coast")}
-            self.step = {ph: cached[f"step_{ph}"] for ph in ("rail", "boost", "coast")}
-            for ph in ("rail", "boost", "coast"):
-                self.trajectory[ph] = cached[f"traj_{ph}"]
+            # deserialised when first used: with the compiled libraries cached, a ranking
+            # needs the rail trajectory, the coast step and the right-hand sides symbolically
+            # (~0.15 s of Functions left on disk: the boost and coast trajectories)
+            self.rhs, self.step, self.trajectory = (model_cache.PhaseView(cached, f"{kind}_")
+                                                    for kind in ("rhs", "step", "traj"))
             self._build_events(cached["apex"])
         else:
             self.rhs = {ph: rhs_mod.build(self.setup, ph, n_p=self.n_p) for ph in ("rail", "boost", "coast")}
@@ -68,8 +71,16 @@ class SlotFlightModel(FlightModel):
                                           **{f"traj_{ph}": f for ph, f in self.trajectory.items()},
                                           "apex": self._apex})
         for ph in ("rail", "boost", "coast"):
-            self._run[ph] = self._compiled(self.trajectory[ph])
+            self._run[ph] = self._cached_run(ph) or self._compiled(self.trajectory[ph])
         self._apogee_run = self._compiled(self._apogee_event)
+
+    def _cached_run(self, phase: str):
+        """The compiled trajectory of ``phase`` if the cache has it, found by its name and
+        key (as :meth:`_compiled` names it) without loading the symbolic Function."""
+        if not self.jit or self._key is None:
+            return None
+        key = hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
+        return cached_library(f"traj_{phase}", key)
 
     # ------------------------------------------------------------ layout of p_ext
     def parameters(self, p, motor, grid: tuple[int, int, float]) -> np.ndarray:
@@ -81,7 +92,24 @@ class SlotFlightModel(FlightModel):
 
     def grid_for(self, motor, p_nominal) -> tuple[int, int, float]:
         """The RK4 grid ``motor``'s own model would choose (``_choose_grid`` on the
-        nominal parameters), flown here.  Needs ``n_boost`` to fit the slot."""
+        nominal parameters), flown here.  Needs ``n_boost`` to fit the slot.
+
+        Kept on disk with the model (:mod:`~ironbark_opt.dynamics.model_cache`), as a
+        motor's own model keeps its grid: keyed by this model's key, the motor's slot
+        data and ``p_nominal``, so the next ranking with this motor skips the ~30
+        stiffness eigenproblems and the probe flights of the choice."""
+        key = None
+        if self._key is not None:
+            data = self.slot.pack(motor).tobytes() + np.asarray(p_nominal, dtype=float).tobytes()
+            key = hashlib.sha256(repr(("grid", self._key)).encode() + data).hexdigest()[:24]
+            hit = model_cache.load(key)
+            if hit is not None:
+                return tuple(hit["grid"])
+        grid = self._choose_grid_for(motor, p_nominal)
+        model_cache.store(key, {"grid": grid})
+        return grid
+
+    def _choose_grid_for(self, motor, p_nominal) -> tuple[int, int, float]:
         n0 = initial_boost_steps(motor, p_nominal, self.steps)
         if n0 >= self.cap_boost:
             raise ValueError(f"{n0} boost steps do not fit a grid of {self.cap_boost}")
@@ -112,6 +140,41 @@ class SlotFlightModel(FlightModel):
             cols.append(np.array(self._run["coast"](x, t_b, t_end, q))[:, :st.size])
             x = cols[-1][:, -1]
         return np.hstack(cols)
+
+    #: columns of the mapped outputs Function (see :meth:`_outputs_function`)
+    OUTPUT_BLOCK = 64
+
+    def _outputs_function(self, phase: str, n: int):
+        """As :meth:`FlightModel._outputs_function`, for one parameter vector: one
+        map over :data:`OUTPUT_BLOCK` columns per phase with ``p`` shared by them
+        (``reduce_in``; mapped per column, the slot's ~1600 entries were copied to
+        every column: 64 us a sample), called on blocks of the samples (the last
+        padded with copies of its last column).  A map costs ~0.1 ms a column to
+        build, more than evaluating it, and every candidate has its own sample
+        counts: one small map serves them all.  Each column is the same call as
+        before, so the same numbers.  A parameter matrix (one column a sample)
+        takes the per-sample map."""
+        per_sample = super()._outputs_function
+        if phase not in self.__dict__.get("_out_cache", {}):
+            per_sample(phase, 1)                       # builds (and compiles) the phase's base Function
+        shared = self.__dict__.setdefault("_out_shared", {})
+        k = self.OUTPUT_BLOCK
+        if phase not in shared:
+            shared[phase] = self._out_cache[phase].map(f"outputs_{phase}_shared", "serial", k, [2], [])
+
+        def call(X, T, P):
+            P = np.asarray(P, dtype=float)
+            if P.ndim == 2 and P.shape[1] > 1:
+                return per_sample(phase, n)(X, T, P)
+            X, T = np.asarray(X, dtype=float), np.asarray(T, dtype=float).reshape(1, -1)
+            pad = -n % k
+            if pad:
+                X = np.hstack([X, np.repeat(X[:, -1:], pad, axis=1)])
+                T = np.hstack([T, np.repeat(T[:, -1:], pad, axis=1)])
+            P = P.reshape(-1, 1)
+            return np.hstack([np.array(shared[phase](X[:, i:i + k], T[:, i:i + k], P))
+                              for i in range(0, n + pad, k)])[:, :n]
+        return call
 
     def _set_trajectory(self, phase: str, n: int):
         """The grids live in ``p``: nothing to rebuild (``_choose_grid`` only records ``n``)."""

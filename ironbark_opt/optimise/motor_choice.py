@@ -24,7 +24,6 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Mapping, Sequence
@@ -310,6 +309,7 @@ def choose_motor(setup, candidates: Sequence, target, *, objective: str = "least
     if executor is not None:
         _solve_on_executor(executor, setup, cands, target, ballast_kwargs, results, failures)
     elif n_proc > 1 and setup.source is not None and len(cands) > 1:
+        from concurrent.futures import ProcessPoolExecutor   # here: multiprocessing costs ~20 ms to import
         with ProcessPoolExecutor(max_workers=n_proc) as pool:
             futures = [(c, pool.submit(_solve_from_file, setup.source, dict(load_kwargs or {}), c, target,
                                        ballast_kwargs)) for c in cands]
