@@ -9,19 +9,8 @@ import scipy.linalg
 from scipy.optimize import brentq
 
 from ironbark_opt.errors import SolverError
-from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
-from panair.solver import build_panels, make_solver, subsonic, supersonic
+from panair.solver import make_solver, subsonic, supersonic
 from panair.solver.nose_correction import G, _pm, _pm_inverse
-
-
-@pytest.fixture(scope="module")
-def finner_panels():
-    """A coarse Basic Finner half model (as tests/unit/test_panair_supersonic.py)."""
-    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
-    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
-    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
-    return build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
-                        symmetric=True)
 
 
 def _captured(monkeypatch, module, cls):
@@ -36,9 +25,9 @@ def _captured(monkeypatch, module, cls):
     return seen
 
 
-def test_causal_lu_solves_the_supersonic_matrix_as_a_dense_lu(finner_panels, monkeypatch):
+def test_causal_lu_solves_the_supersonic_matrix_as_a_dense_lu(coarse_finner_panels, monkeypatch):
     seen = _captured(monkeypatch, supersonic, "CausalLU")
-    make_solver(finner_panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+    make_solver(coarse_finner_panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
     A = seen[0]
     assert (A == 0).mean() > 0.3                    # causality: most pairs are out of the cone
     rng = np.random.default_rng(1)
@@ -58,9 +47,9 @@ def test_causal_lu_reports_a_singular_matrix():
         supersonic.CausalLU(A, np.arange(5.0))
 
 
-def test_refined_lu_reaches_the_double_precision_solution(finner_panels, monkeypatch):
+def test_refined_lu_reaches_the_double_precision_solution(coarse_finner_panels, monkeypatch):
     seen = _captured(monkeypatch, subsonic, "RefinedLU")
-    make_solver(finner_panels, 0.5, sref=np.pi / 4, lref=1.0, xref=5.0)
+    make_solver(coarse_finner_panels, 0.5, sref=np.pi / 4, lref=1.0, xref=5.0)
     A = seen[0]
     b = np.random.default_rng(2).standard_normal((len(A), 4))
     lu = subsonic.RefinedLU(A.copy())
