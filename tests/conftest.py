@@ -34,3 +34,17 @@ def ork_offline(monkeypatch, tmp_path):
     monkeypatch.setenv("IRONBARK_OFFLINE", "1")
     monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
     monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(DATA / "ork" / "motors"))
+
+
+@pytest.fixture(scope="session")
+def coarse_finner_panels():
+    """A coarse Basic Finner half model's PanelSet (body 10 calibers, four fins)."""
+    import numpy as np
+
+    from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
+    from panair.solver import build_panels
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
+    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
+    return build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
+                        symmetric=True)

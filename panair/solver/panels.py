@@ -167,13 +167,16 @@ def build_panels(networks, *, symmetric: bool = False, tol: float | None = None)
         raise InputError("no surface networks to solve for", field="networks")
     corners = np.concatenate(corners)
     # edge dictionary of body panels: key = sorted rounded end points
+    # (the keys of _edge_key, rounded for all corners at once)
     edge_map: dict = {}
+    ends = np.round(corners / tol).astype(np.int64).tolist()
+    short = (np.linalg.norm(corners - np.roll(corners, -1, axis=1), axis=-1) <= tol).tolist()
     for p in range(len(corners)):
         for e in range(4):
-            a, b = corners[p, e], corners[p, (e + 1) % 4]
-            if np.linalg.norm(a - b) <= tol:
+            if short[p][e]:
                 continue
-            edge_map.setdefault(_edge_key(a, b, tol), []).append(p)
+            a, b = tuple(ends[p][e]), tuple(ends[p][(e + 1) % 4])
+            edge_map.setdefault((a, b) if a <= b else (b, a), []).append(p)
     wc, wu, wl, wb = [], [], [], []
     _, cen, _, _ = planar_corners(corners)
     for net in networks:

