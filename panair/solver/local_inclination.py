@@ -16,6 +16,16 @@ Dynamics*, 2nd ed., 2006, sec. 6.2-6.4):
 * both expand through a Prandtl-Meyer turn from the free stream when they
   face away from it (Anderson, *Modern Compressible Flow*, 3rd ed., eq. 4.44).
 
+Body panels parallel to the axis (a cylinder's, normal with no axial
+component) keep their zero-incidence pressure at every angle of attack:
+applied to them the local-inclination rule gives a lift linear in alpha
+along the whole cylinder (Ackeret's 2 delta / beta on each strip), where
+slender-body theory has none on a constant cross-section, dN/dx = 2 q alpha
+dS/dx (Munk, NACA Report 184, 1924; Nielsen, *Missile Aerodynamics*, 1960,
+ch. 3); the non-linear cylinder lift is the table's viscous cross-flow term.
+(APEX I at Mach 1.2: CN-alpha 70 /rad with the cylinder's strips, about six
+times its subsonic value, and the centre of pressure forward of the CG.)
+
 It has no interference (no fin-body carry-over, no upwash) and is less
 accurate than linear theory where that solves; :func:`panair.sweep` uses it
 only for the Mach numbers linear theory refuses and records them in the
@@ -96,6 +106,8 @@ class LocalInclinationSolver:
         names = np.array(panels.names)[panels.network]
         self._fin = np.char.startswith(names.astype(str), "fin") | \
             np.char.startswith(names.astype(str), "cap")
+        #: body panels parallel to the axis: no incidence pressure (see the module docstring)
+        self._axial = ~self._fin & (np.abs(nrm[:, 0]) < 1e-6)
         self._cone, self._wedge = TangentCone(mach), TangentWedge(mach)
 
     def solve(self, alpha, beta=0.0) -> list[InclinationResult]:
@@ -105,6 +117,7 @@ class LocalInclinationSolver:
         for a in np.atleast_1d(np.asarray(alpha, float)):
             v = np.array([np.cos(a), 0.0, np.sin(a)])
             delta = np.arcsin(np.clip(-(self._nrm @ v), -1.0, 1.0))
+            delta[self._axial] = 0.0
             cp = np.where(self._fin, self._wedge.cp(delta), self._cone.cp(delta))
             c = integrate_forces(cp[sel], self._cen[sel], self._nrm_f[sel], self._area[sel],
                                  sref=self.sref, lref=self.lref, xref=self.xref,

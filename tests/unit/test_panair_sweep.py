@@ -272,6 +272,32 @@ def test_local_inclination_fallback_on_a_superinclined_cone():
     assert c["CN"][0, 1] > 0
 
 
+def test_local_inclination_puts_no_incidence_lift_on_a_cylinder():
+    """Slender-body theory: no normal force on a constant cross-section (Munk 1924).  The
+    local-inclination fallback gives the 35 deg cone followed by a cylinder 1 or 8
+    calibres long the same CN and the same centre of pressure (the cone's); before, each
+    cylinder strip carried a tangent-cone lift linear in alpha, so CN grew with the
+    cylinder's length (measured: 8 calibres gave about 4x the 1-calibre CN)."""
+    from panair.mesh import BodyGeometry, RocketGeometry
+    r, half = 0.05, np.radians(35.0)
+    lc = r / np.tan(half)
+    fine = MeshOptions(n_theta=32, n_nose=12, body_spacing=1.0, n_chord=8, n_span=3)
+    cn, xcp = [], []
+    for cal in (1.0, 8.0):
+        x = np.concatenate([np.linspace(0.0, lc, 20), np.linspace(lc, lc + cal * 2 * r, 12)[1:]])
+        rr = np.where(x <= lc, x * np.tan(half), r)
+        c, info = sweep_pressure(RocketGeometry(BodyGeometry(x, rr), (), "cone35"), [2.0],
+                                 np.radians([0.0, 4.0]), sref=np.pi * r * r, lref=2 * r, xref=0.0,
+                                 options=fine, workers=1, progress=False)
+        assert info["mach_local_inclination"] == [2.0]
+        cn.append(c["CN"][0, 1])
+        xcp.append(-c["Cm"][0, 1] / c["CN"][0, 1])
+    print(f"cone-cylinder 1 / 8 cal, Mach 2, 4 deg: CN {cn[0]:.4f} / {cn[1]:.4f}, xcp {xcp[0]:.3f} / {xcp[1]:.3f} cal")
+    assert cn[0] > 0 and cn[1] == pytest.approx(cn[0], rel=1e-9)
+    assert xcp[1] == pytest.approx(xcp[0], abs=1e-9)
+    assert 0.0 < xcp[0] < lc / (2 * r)                       # on the cone
+
+
 def test_body_critical_mach_ignores_the_fin_root_corners():
     """The body's minimum Cp (its critical Mach number, panair.transonic) comes from its
     own suction peak, not the singular fin-body corners: on OpenRocket's 'A simple model
