@@ -9,7 +9,7 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
   not in the fixtures; the thrust curves are OpenRocket 15.03's own copies
   (tests/data/thrustcurve/openrocket-15.03, digests equal to the ones the .ork files
   store).  Printed; bounded at the measured state so a regression fails (session 6:
-  FT2 +2.5 % vs OpenRocket's +2.9 %; APEX +5.2 % vs OpenRocket's +1.0 %, not closer: its
+  FT2 +2.5 % vs OpenRocket's +2.9 %; APEX +5.1 % vs OpenRocket's +1.0 %, not closer: its
   boost runs through Mach 0.95-1.1 where our transonic rise starts at the fins' critical
   Mach 0.88 and OpenRocket's nose-cone rise from about Mach 0.7).
 
