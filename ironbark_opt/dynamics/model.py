@@ -31,6 +31,7 @@ from ironbark_opt.dynamics import ejection, model_cache
 from ironbark_opt.dynamics.integrator import (cached_library, compile_function, grid_fractions, jit_mode,
                                                 library_member, phase_trajectory, rk4_step)
 from ironbark_opt.errors import InputError, SolverError
+from ironbark_opt.roots import illinois
 
 G0 = 9.80665  # [m/s^2] standard gravity, only for first guesses
 _PHASES = np.array(["rail", "boost", "coast"])
@@ -447,23 +448,12 @@ class FlightModel:
                 t_a, g_a, X_a, t_b = t_b, g_b, X_b, t_b - g_b * (t_b - t_a) / (g_b - g_a)
                 if not lo <= t_b <= hi:
                     break
-        side = 0                                    # Illinois regula falsi fallback
-        for _ in range(60):
-            t = hi - g_hi * (hi - lo) / (g_hi - g_lo)
-            g, X = self._rail_travel(t, p, geom)
-            if abs(g) < 1e-10 or hi - lo < 1e-12:
-                return t, X
-            if g > 0:
-                hi, g_hi = t, g
-                if side == 1:
-                    g_lo *= 0.5
-                side = 1
-            else:
-                lo, g_lo = t, g
-                if side == -1:
-                    g_hi *= 0.5
-                side = -1
-        raise SolverError(f"rail-exit time did not converge (bracket {lo:.6f}..{hi:.6f} s)")
+        # Illinois regula falsi fallback
+        t, _, X, _, done = illinois(lambda t: self._rail_travel(t, p, geom), lo, g_lo, hi, g_hi,
+                                    gtol=np.nextafter(1e-10, 0.0), xtol=np.nextafter(1e-12, 0.0))
+        if not done:
+            raise SolverError(f"rail-exit time did not converge (bracket {lo:.6f}..{hi:.6f} s)")
+        return t, X
 
     def run(self, p, *, descent: bool = False) -> dict:
         """Fly numerically to apogee (optionally to landing).

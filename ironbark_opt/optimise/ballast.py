@@ -36,6 +36,7 @@ from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import InputError
 from ironbark_opt.flight import flight_model, simulate
 from ironbark_opt.optimise.target import parse_target
+from ironbark_opt.roots import illinois
 
 _SM = OUTPUT_NAMES.index("static_margin_cal")
 
@@ -253,7 +254,7 @@ ROOT_TOL_M = 1e-6
 def _mass_root(fly, target_agl: float, lo, hi, guess):
     """(ballast [kg], its run, flights) with ``fly(m)["x_apogee"][2] = target_agl``.
 
-    Illinois regula falsi (Dowell & Jarratt, BIT 11, 1971) on the apogee of
+    Illinois regula falsi (:func:`ironbark_opt.roots.illinois`) on the apogee of
     :meth:`FlightModel.run`, from the bracketing flights ``lo = (0, run)``,
     ``hi = (m_max, run)`` and the interpolated ``guess = (m, run)`` already flown,
     to ``|apogee - target| <= ROOT_TOL_M``: the same problem as the NLP when the
@@ -272,25 +273,11 @@ def _mass_root(fly, target_agl: float, lo, hi, guess):
         m_a, g_a = m_c, g_c
     else:
         m_b, g_b = m_c, g_c
-    side, best = 0, (abs(g_c), m_c, r_c)
-    for n in range(2, 62):
-        m = m_b - g_b * (m_b - m_a) / (g_b - g_a)
-        run = fly(m)
-        g = err(run)
-        best = min(best, (abs(g), m, run), key=lambda b: b[0])
-        if abs(g) <= ROOT_TOL_M or m_b - m_a <= 1e-12 * max(1.0, m_b):
-            break
-        if g > 0:
-            m_a, g_a = m, g
-            if side == 1:
-                g_b *= 0.5
-            side = 1
-        else:
-            m_b, g_b = m, g
-            if side == -1:
-                g_a *= 0.5
-            side = -1
-    return best[1], best[2], n
+    m, g, run, n, _ = illinois(lambda m: (err(r := fly(m)), r), m_a, g_a, m_b, g_b, gtol=ROOT_TOL_M,
+                               xtol=1e-12 * max(1.0, m_b), best=True)
+    if abs(g_c) < abs(g):
+        return m_c, r_c, n + 1
+    return m, run, n + 1
 
 
 def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_options):

@@ -7,8 +7,7 @@ import pytest
 
 pytest.importorskip("numba")
 
-from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket  # noqa: E402
-from panair.solver import build_panels, kernels, make_solver  # noqa: E402
+from panair.solver import kernels, make_solver  # noqa: E402
 from panair.solver.influence import influence_matrices  # noqa: E402
 from panair.solver.supersonic_influence import panel_frames, source_potential  # noqa: E402
 
@@ -16,12 +15,8 @@ RTOL = 1e-12
 
 
 @pytest.fixture(scope="module")
-def finner():
-    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
-    fins = (FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4),)
-    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=1.0, n_chord=4, n_span=3)
-    return build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
-                        symmetric=True)
+def finner(coarse_finner_panels):
+    return coarse_finner_panels
 
 
 def _close(a, b):
