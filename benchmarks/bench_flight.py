@@ -76,7 +76,7 @@ def main():
     p0 = setup.nominal_parameters()
 
     t0 = time.perf_counter()
-    vm = flight_model(setup)
+    vm = flight_model(setup, jit=False)
     build_vm = time.perf_counter() - t0
     t_vm = median_time(lambda: vm.run(p0), args.repeat)
     print(f"model build (VM):                {1e3 * build_vm:8.1f} ms")
