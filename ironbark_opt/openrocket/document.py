@@ -4,6 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from ironbark_opt.errors import InputError
 from ironbark_opt.openrocket import ormass
 from ironbark_opt.openrocket.motors import MotorConfig, configurations, select_config
 from ironbark_opt.openrocket.simdata import OrkSimulation, simulations
@@ -68,10 +69,8 @@ class OrkDocument:
                 for c in self.configs:
                     if c.config_id == sim.config_id and c.motors:
                         return c, sim
-                from ironbark_opt.errors import InputError
                 raise InputError(f"simulation {sim.name!r} flies motor configuration {sim.config_id!r}, which "
                                  "has no motor in the design", source=self.path, field="config")
-        from ironbark_opt.errors import InputError
         try:
             cfg = select_config(self.configs, wanted, self.path)
         except InputError as err:
@@ -91,7 +90,6 @@ class OrkDocument:
 
     def simulation(self, which: str | int | None = None) -> OrkSimulation:
         """A stored simulation by index or name (default: the first with flight data)."""
-        from ironbark_opt.errors import InputError
         if which is None:
             found = [s for s in self.simulations if s.has_data()] or self.simulations
         elif isinstance(which, int):

@@ -299,8 +299,8 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
     cache = model.__dict__.setdefault("_nlp_cache", {})
     if key in cache:
         return cache[key]
-    rail_variable = not hasattr(type(model), "final_state_symbolic")
-    name = f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
+    rail_variable = _rail_variable(model)
+    name = _nlp_name(free_position, rail_speed, margin)
     key_c = None
     if rail_variable and model._key is not None:
         key_c = hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
@@ -328,6 +328,17 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
     return cache[key]
 
 
+def _rail_variable(model) -> bool:
+    """True when the NLP has the rail-exit time as a variable (staged rockets keep their
+    own rootfinder, ``final_state_symbolic``)."""
+    return not hasattr(type(model), "final_state_symbolic")
+
+
+def _nlp_name(free_position: bool, rail_speed: bool, margin: bool) -> str:
+    """Name of the NLP Function (and of its compiled library) for one problem shape."""
+    return f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
+
+
 def _nlp_graph(model, free_position: bool, rail_speed: bool, margin: bool):
     """(NLP Function ``(x, p) -> (f, g)``, closest-apogee solver factory ``opts -> nlpsol``,
     number of equality constraints) of :func:`_nlp`."""
@@ -338,7 +349,7 @@ def _nlp_graph(model, free_position: bool, rail_speed: bool, margin: bool):
     target_agl, m_max, t_rail_guess = par[n_p], par[n_p + 1], par[n_p + 2]
     m_sym, x_sym, T_sym = ca.MX.sym("m_b"), ca.MX.sym("x_b"), ca.MX.sym("T")
     p_sym = ca.vertcat(p_sym[:i_m], m_sym, x_sym if free_position else p_sym[i_x], p_sym[i_x + 1:])
-    rail_variable = not hasattr(type(model), "final_state_symbolic")
+    rail_variable = _rail_variable(model)
     tr_sym = ca.MX.sym("t_rail")
     w = [m_sym] + ([x_sym] if free_position else []) + ([tr_sym] if rail_variable else []) + [T_sym]
     x_T, t_r, x_r, _ = _final_state(model, p_sym, T_sym, t_rail_guess, t_rail=tr_sym if rail_variable else None)
@@ -349,8 +360,7 @@ def _nlp_graph(model, free_position: bool, rail_speed: bool, margin: bool):
     if margin:
         g.append(model.rhs["boost"](x_r, t_r, p_sym)[1][_SM])
     W = ca.vertcat(*w)
-    name = f"ballast_nlp_{int(free_position)}{int(rail_speed)}{int(margin)}"
-    oracle = ca.Function(name, [W, par], [m_sym / m_max, ca.vertcat(*g)], ["x", "p"], ["f", "g"])
+    oracle = ca.Function(_nlp_name(free_position, rail_speed, margin), [W, par], [m_sym / m_max, ca.vertcat(*g)], ["x", "p"], ["f", "g"])
     closest = {"x": W, "p": par, "f": ((x_T[2] - target_agl) / 100.0) ** 2, "g": ca.vertcat(*g[:n_eq - 1], *g[n_eq:])}
     return oracle, (lambda opts: ca.nlpsol("ballast_closest", "ipopt", closest, opts)), n_eq
 
