@@ -39,7 +39,8 @@ def load_motor_for(spec):
     from ironbark_opt.motors import load_motor
     from ironbark_opt.motors.grains import Grains
 
-    motor = load_motor(spec.file, spec.designation)
+    from ironbark_opt.rocket.specs import MOTOR_HEADER_KEYS
+
     overrides = dict(spec.overrides)
     if "grains" in overrides and isinstance(overrides["grains"], dict):
         overrides["grains"] = Grains(**overrides["grains"])
@@ -47,6 +48,16 @@ def load_motor_for(spec):
         # The file's header mass describes the catalogue motor; the user's
         # grain geometry is the better number for their propellant load.
         overrides["propellant_mass"] = overrides["grains"].mass
+    # the header's numbers from [motor.overrides], so a headerless thrust curve reads
+    header = {k: overrides[k] for k in MOTOR_HEADER_KEYS if k in overrides}
+    try:
+        motor = load_motor(spec.file, spec.designation, **header)
+    except InputError as err:
+        if err.field != "header":
+            raise
+        raise InputError(f"{err.message}; in a rocket file give them in [motor.overrides] "
+                         "(dry_mass, propellant_mass [kg] or grains; diameter, length [m])",
+                         source=err.source, line=err.line, field=err.field) from None
     if "dry_inertia" in overrides:
         overrides["dry_inertia"] = tuple(overrides["dry_inertia"])
     if overrides:

@@ -15,7 +15,10 @@ from ironbark_opt.rocket.materials import DEFAULT_ROUGHNESS
 
 #: ``SolidMotor`` keyword names a motor override may set (docs/ARCHITECTURE.md)
 MOTOR_OVERRIDE_KEYS = ("dry_mass", "dry_cg", "dry_inertia", "propellant_mass",
-                       "propellant_cg", "nozzle_exit_area", "grains")
+                       "propellant_cg", "nozzle_exit_area", "grains", "diameter", "length")
+#: Overrides that stand in for a motor file's header line: with them a headerless
+#: (RocketPy-style) or three-number-header thrust curve reads from a rocket file
+MOTOR_HEADER_KEYS = ("propellant_mass", "dry_mass", "diameter", "length")
 GRAIN_KEYS = ("count", "density", "outer_radius", "inner_radius", "height", "separation")
 
 

@@ -268,3 +268,33 @@ def test_calisto_launch_mass_with_the_motor_package():
           f"propellant {motor.propellant_mass_initial:.4f} kg (README 2.956 kg)")
     assert wet[0] == pytest.approx(19.197, abs=1e-3)
     assert motor.propellant_mass_initial == pytest.approx(2.956, abs=5e-4)
+
+
+MOTORS = ROOT / "tests" / "data" / "motors"
+
+
+def test_headerless_thrust_curve_reads_with_header_overrides(tmp_path):
+    """A RocketPy-style .eng (no header line) flies from a rocket file when
+    [motor.overrides] gives the header's numbers; the motor equals the one read
+    with the same numbers as keyword arguments (independent path: load_motor)."""
+    from ironbark_opt.motors import load_motor
+    from ironbark_opt.rocket.toml_io import load_rocket_toml as load_rocket_file
+    from ironbark_opt.vehicle import load_motor_for
+    shutil.copy(MOTORS / "Cesaroni_M1101.eng", tmp_path / "Cesaroni_M1101.eng")
+    base = _base().replace('file = "Cesaroni_M1670.eng"', 'file = "Cesaroni_M1101.eng"')
+    ov = "\n[motor.overrides]\ndry_mass = 2.5\npropellant_mass = 3.0\n"
+    p = tmp_path / "rocket.toml"
+    p.write_text(base.replace("nozzle_x = 1.35\n", "nozzle_x = 1.35\n" + ov
+                              + "diameter = 0.075\nlength = 0.757\n"))
+    m = load_motor_for(load_rocket_file(p).motor)
+    ref = load_motor(MOTORS / "Cesaroni_M1101.eng", propellant_mass=3.0, dry_mass=2.5,
+                     diameter=0.075, length=0.757)
+    assert m.total_impulse == pytest.approx(ref.total_impulse, rel=1e-12)
+    assert (m.dry_mass, m.propellant_mass_initial, m.diameter, m.length) == (2.5, 3.0, 0.075, 0.757)
+    # without diameter and length: the error names the file, line 1, the header and the keys
+    p.write_text(base.replace("nozzle_x = 1.35\n", "nozzle_x = 1.35\n" + ov))
+    with pytest.raises(InputError) as err:
+        load_motor_for(load_rocket_file(p).motor)
+    e = err.value
+    assert e.line == 1 and e.field == "header" and e.source.endswith("Cesaroni_M1101.eng")
+    assert "[motor.overrides]" in str(e) and "diameter" in str(e)
