@@ -53,7 +53,7 @@ def load_motor_for(spec):
     try:
         motor = load_motor(spec.file, spec.designation, **header)
     except InputError as err:
-        if err.field != "header":
+        if err.field != "header" and err.field not in MOTOR_HEADER_KEYS:
             raise
         raise InputError(f"{err.message}; in a rocket file give them in [motor.overrides] "
                          "(dry_mass, propellant_mass [kg] or grains; diameter, length [m])",

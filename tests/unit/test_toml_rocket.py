@@ -298,3 +298,21 @@ def test_headerless_thrust_curve_reads_with_header_overrides(tmp_path):
     e = err.value
     assert e.line == 1 and e.field == "header" and e.source.endswith("Cesaroni_M1101.eng")
     assert "[motor.overrides]" in str(e) and "diameter" in str(e)
+
+
+def test_thrust_table_csv_from_a_rocket_file_names_the_override_keys(tmp_path):
+    """A time/thrust CSV has no motor data: from a rocket file the error points at
+    [motor.overrides]; with the keys given it reads (impulse = trapezoid of the rows)."""
+    from ironbark_opt.rocket.toml_io import load_rocket_toml
+    from ironbark_opt.vehicle import load_motor_for
+    (tmp_path / "thrust.csv").write_text("time_s,thrust_N\n0,0\n0.1,1000\n2.0,1000\n2.1,0\n")
+    base = _base().replace('file = "Cesaroni_M1670.eng"', 'file = "thrust.csv"')
+    p = tmp_path / "rocket.toml"
+    p.write_text(base.replace("nozzle_x = 1.35\n", "nozzle_x = 1.35\n[motor.overrides]\ndry_mass = 1.0\n"))
+    with pytest.raises(InputError) as err:
+        load_motor_for(load_rocket_toml(p).motor)
+    assert "[motor.overrides]" in str(err.value) and err.value.source.endswith("thrust.csv")
+    p.write_text(base.replace("nozzle_x = 1.35\n", "nozzle_x = 1.35\n[motor.overrides]\ndry_mass = 1.0\n"
+                              "propellant_mass = 1.2\ndiameter = 0.054\nlength = 0.4\n"))
+    m = load_motor_for(load_rocket_toml(p).motor)
+    assert m.total_impulse == pytest.approx(0.5 * 0.1 * 1000 * 2 + 1.9 * 1000, rel=1e-9)
