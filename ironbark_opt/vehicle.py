@@ -36,28 +36,8 @@ def load_motor_for(spec):
     if spec.kind != "solid":
         from ironbark_opt.rocket.tank_spec import tank_motor
         return tank_motor(spec)
-    from ironbark_opt.motors import load_motor
-    from ironbark_opt.motors.grains import Grains
-
-    from ironbark_opt.rocket.specs import MOTOR_HEADER_KEYS
-
-    overrides = dict(spec.overrides)
-    if "grains" in overrides and isinstance(overrides["grains"], dict):
-        overrides["grains"] = Grains(**overrides["grains"])
-    if "grains" in overrides and "propellant_mass" not in overrides:
-        # The file's header mass describes the catalogue motor; the user's
-        # grain geometry is the better number for their propellant load.
-        overrides["propellant_mass"] = overrides["grains"].mass
-    # the header's numbers from [motor.overrides], so a headerless thrust curve reads
-    header = {k: overrides[k] for k in MOTOR_HEADER_KEYS if k in overrides}
-    try:
-        motor = load_motor(spec.file, spec.designation, **header)
-    except InputError as err:
-        if err.field != "header" and err.field not in MOTOR_HEADER_KEYS:
-            raise
-        raise InputError(f"{err.message}; in a rocket file give them in [motor.overrides] "
-                         "(dry_mass, propellant_mass [kg] or grains; diameter, length [m])",
-                         source=err.source, line=err.line, field=err.field) from None
+    overrides = _solid_overrides(spec)
+    motor = read_motor_file(spec, overrides)
     if "dry_inertia" in overrides:
         overrides["dry_inertia"] = tuple(overrides["dry_inertia"])
     if overrides:
@@ -66,6 +46,46 @@ def load_motor_for(spec):
         except TypeError as err:
             raise InputError(f"motor override not accepted: {err}", source=spec.file, field="motor.overrides") from None
     return motor
+
+
+def _solid_overrides(spec) -> dict:
+    """``[motor.overrides]`` of a solid motor as motor fields (grains as
+    :class:`~ironbark_opt.motors.grains.Grains`, their propellant mass)."""
+    from ironbark_opt.motors.grains import Grains
+    overrides = dict(spec.overrides)
+    if "grains" in overrides and isinstance(overrides["grains"], dict):
+        overrides["grains"] = Grains(**overrides["grains"])
+    if "grains" in overrides and "propellant_mass" not in overrides:
+        # The file's header mass describes the catalogue motor; the user's
+        # grain geometry is the better number for their propellant load.
+        overrides["propellant_mass"] = overrides["grains"].mass
+    return overrides
+
+
+def read_motor_file(spec, overrides: dict | None = None):
+    """The thrust-curve file of ``spec`` as written (its own header numbers); a file
+    without them (RocketPy-style headerless ``.eng``, a time/thrust CSV) takes the
+    header's numbers from ``[motor.overrides]`` (``MOTOR_HEADER_KEYS``)."""
+    from ironbark_opt.motors import load_motor
+    from ironbark_opt.rocket.specs import MOTOR_HEADER_KEYS
+    try:
+        return load_motor(spec.file, spec.designation)
+    except InputError as err:
+        if err.field != "header" and err.field not in MOTOR_HEADER_KEYS:
+            raise
+        first = err
+    ov = _solid_overrides(spec) if overrides is None else overrides
+    header = {k: ov[k] for k in MOTOR_HEADER_KEYS if k in ov}
+    if header:
+        try:
+            return load_motor(spec.file, spec.designation, **header)
+        except InputError as err:
+            if err.field != "header" and err.field not in MOTOR_HEADER_KEYS:
+                raise
+            first = err
+    raise InputError(f"{first.message}; in a rocket file give them in [motor.overrides] "
+                     "(dry_mass, propellant_mass [kg] or grains; diameter, length [m])",
+                     source=first.source, line=first.line, field=first.field) from None
 
 
 def load_aero_table(aero_spec, rocket):
@@ -148,10 +168,8 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
     if not pressure_correction and motor.nozzle_exit_area is not None:
         motor = dataclasses.replace(motor, nozzle_exit_area=None)
     rocket = rf.dry_rocket(motor)
-    from ironbark_opt.motors import load_motor
     from ironbark_opt.plausibility import check_rocket_file
-    file_motor = (motor.curve if rf.motor.kind != "solid"
-                  else load_motor(rf.motor.file, rf.motor.designation))
+    file_motor = motor.curve if rf.motor.kind != "solid" else read_motor_file(rf.motor)
     check_rocket_file(rf, rocket, motor, file_motor)
     table = load_aero_table(rf.aero, rocket)
     jet, jet_source = jet_area_of(motor)
