@@ -37,6 +37,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 
+import math
+
 import numpy as np
 
 from ironbark_opt.errors import InputError
@@ -106,6 +108,9 @@ class FinGeometry:
     blunt_leading_edge : bool
         Set by :meth:`sharpened`: the leading-edge bevel stands in for a
         blunt edge (its panels carry no axial force).
+    blunt_trailing_edge : bool
+        Set by :meth:`sharpened`: the trailing-edge bevel closes a blunt edge
+        (its panels carry no force, as the subsonic closure wedge).
     """
 
     count: int
@@ -121,6 +126,7 @@ class FinGeometry:
     te_bevel: float | None = None
     outline: tuple | None = field(default=None, compare=False)
     blunt_leading_edge: bool = False
+    blunt_trailing_edge: bool = False
 
     def __post_init__(self):
         for name in ("root_chord", "span", "thickness"):
@@ -162,6 +168,8 @@ class FinGeometry:
         separated base behind a blunt edge is the base-drag model's part."""
         if self.section in ("square", "rounded"):
             return min(self.thickness, chord / 2)
+        if self.blunt_trailing_edge:
+            return self.bevels(chord)[1]
         if self.section == "double_wedge" and self.te_bevel == 0.0:
             return 1e-12 * chord            # a step: only the last chordwise panel
         return 0.0
@@ -176,8 +184,8 @@ class FinGeometry:
 
     def sharpened(self, wedge: float) -> "FinGeometry":
         """A blunt (square, rounded) leading edge replaced by a wedge ``wedge``
-        fin thicknesses long (the section becomes a hexagon with a square
-        trailing edge); a round-nosed airfoil likewise, with a sharp trailing
+        fin thicknesses long and the blunt trailing edge closed by another (the
+        section becomes a hexagon; the closing wedge carries no force); a round-nosed airfoil likewise, with a sharp trailing
         edge bevelled over the aft 70 % of the mean chord; other sections
         unchanged.  The wedge's panels carry no
         axial force: linear supersonic theory cannot solve a blunt edge (it is
@@ -190,8 +198,14 @@ class FinGeometry:
             mean_chord = 0.5 * (float(self.chord_at(0.0)) + float(self.chord_at(1.0)))
             return replace(self, section="double_wedge", le_bevel=wedge * self.thickness,
                            te_bevel=0.7 * mean_chord, blunt_leading_edge=True)
+        # the blunt trailing edge closed by a wedge as long as the leading edge's (no
+        # force on it: the base behind a blunt edge is the base-drag model's); a
+        # square step there made the body panels behind a fin root singular in
+        # cross-flow wherever the body runs on past the fins (EuRoC'22 Andromeda,
+        # Cp -7.8 at Mach 1.5, alpha 2 deg)
         return replace(self, section="double_wedge", le_bevel=wedge * self.thickness,
-                       te_bevel=0.0, blunt_leading_edge=True)
+                       te_bevel=wedge * self.thickness, blunt_leading_edge=True,
+                       blunt_trailing_edge=True)
 
     def half_thickness(self, xi, chord):
         """Half thickness [m] at ``xi`` [m] aft of the local leading edge."""
@@ -241,7 +255,10 @@ class MeshOptions:
     rounded) fin leading edges are meshed as a wedge this many fin
     thicknesses long (0: as they are; :meth:`for_mach` sets
     ``SUPERSONIC_LE_WEDGE`` for supersonic Mach numbers, where linear theory
-    cannot solve a blunt edge; :meth:`FinGeometry.sharpened`).
+    cannot solve a blunt edge; :meth:`FinGeometry.sharpened`); tip_mach :
+    the supersonic Mach numbers the mesh is solved at (empty: none): a
+    nose tip steeper than their Mach cones is meshed as a cone (see
+    :func:`_sharpened_tip`).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -262,6 +279,7 @@ class MeshOptions:
     chord_clustering: float = 1.0
     supersonic_span_factor: float = 2.0
     blunt_le_wedge: float = 0.0
+    tip_mach: tuple = ()
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
@@ -281,6 +299,61 @@ def _chord_stations(n, clustering):
     return (1 - clustering) * s + clustering * 0.5 * (1 - np.cos(np.pi * s))
 
 
+def _meridians(th_start: float, th_end: float, fin_thetas, n_theta: int) -> np.ndarray:
+    """Body meridian angles [rad] from ``th_start`` to ``th_end``, with every fin
+    root angle on a line and each gap between them split evenly at about
+    2 pi / ``n_theta``.  Equal spacing around the circle left a fin root between
+    two lines where the fins do not divide the circle like the mesh (3 fins, 32
+    lines: a 1.5 deg sliver beside each root), and the supersonic solution was
+    singular at the fin trailing edges (EuRoC'22 Andromeda, Cp 5e8 at Mach 1.5).
+    Fins that fall on the even spacing (4 fins rolled 45 deg) keep the same mesh."""
+    bounds = sorted({th_start, th_end, *(t for t in fin_thetas if th_start < t < th_end)})
+    step = 2.0 * np.pi / n_theta
+    out = [th_start]
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        k = max(1, int(round((b - a) / step)))
+        out.extend(a + (b - a) * np.arange(1, k + 1) / k)
+    return np.array(out)
+
+
+#: Largest B tan(delta) of the conical tip panels: g1 = (1 - (B t)^2) / (1 + (B t)^2)
+#: = 0.072, inside the solver's own limit G1_MIN = 0.05 (B t = 0.951;
+#: panair.solver.supersonic) with room for the faceting of the flat panels; a tip
+#: the solver accepts is left as it is
+TIP_BT_MAX = 0.93
+#: The conical tip may replace at most this fraction of the nose length
+TIP_MAX_FRACTION = 0.1
+
+
+def _sharpened_tip(nose_x, x, r, machs) -> list:
+    """Nose stations ``nose_x`` [m] (tip first) without those inside a conical
+    tip: the first panel runs from the tip to the first station whose secant
+    slope r/(x - x_tip) is shallow enough (B tan(delta) <= ``TIP_BT_MAX``) for the
+    largest Mach number of ``machs`` that a tip of at most ``TIP_MAX_FRACTION`` of
+    the nose length satisfies; the stations as they are when none is (or none
+    needs it).  Higher Mach numbers stay superinclined (the solver's fallback).
+
+    Why: the meridian of a Haack (von Karman, LV-Haack) or power-law nose starts
+    with an infinite slope (r ~ x^(3/4) for Haack), and the cosine-clustered
+    stations make the first ring of panels steeper than the Mach cone: linear
+    supersonic theory has no solution for superinclined panels (PAN AIR user's
+    manual, NASA CR-3252, 1981, on panel inclination; the solver's check), and the
+    whole Mach number fell to local inclination (EuRoC'22 Andromeda: 2 cal von
+    Karman nose, 34 tip panels superinclined at Mach 1.5).  A conical tip is the
+    usual modelling of such a nose for linear theory; it changes the surface
+    over the first few per cent of the nose only (Andromeda at Mach 1.5: 5.4 %)."""
+    rn = np.interp(nose_x, x, r)
+    sec = rn[1:] / np.maximum(nose_x[1:] - nose_x[0], 1e-300)
+    limit = nose_x[0] + TIP_MAX_FRACTION * (nose_x[-1] - nose_x[0])
+    for mach in sorted((m for m in machs if m > 1.0), reverse=True):
+        ok = np.nonzero(math.sqrt(mach * mach - 1.0) * sec <= TIP_BT_MAX)[0]
+        if not len(ok) or nose_x[int(ok[0]) + 1] > limit:
+            continue
+        first = int(ok[0]) + 1
+        return [float(nose_x[0])] + [float(v) for v in nose_x[first:]]
+    return [float(v) for v in nose_x]
+
+
 def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
     x, r = body.x, body.r
     d = 2 * r.max()
@@ -292,6 +365,8 @@ def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
     if x_nose > x[0]:
         s = 0.5 * (1 - np.cos(np.linspace(0, np.pi, n_nose + 1)))
         keep.extend(x[0] + s[1:] * (x_nose - x[0]))
+    if len(opt.tip_mach) and len(keep) > 2 and r[0] <= 1e-9 * d:
+        keep = _sharpened_tip(np.array(keep), x, r, opt.tip_mach)
     step = opt.body_spacing * d / opt.refine
     # keep the corners of the profile after the nose (joints, transitions,
     # boattails: where the slope changes), not every station of a dense profile
@@ -378,6 +453,8 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         theta0 = ths[k] + 0.5 * gaps[k]
         theta = theta0 + np.linspace(0.0, 2 * np.pi, n_lines)
         fin_angles = [(f, phi, theta0 + (th - theta0) % (2 * np.pi)) for f, phi, th in fin_angles]
+    if fin_angles:
+        theta = _meridians(theta[0], theta[-1], [th for _, _, th in fin_angles], n_th)
     for (_, _, th) in fin_angles:
         theta = np.concatenate([theta, [th - eps, th + eps]])
     theta = np.unique(np.round(theta, 12))

@@ -65,6 +65,7 @@ import hashlib
 import json
 import math
 from concurrent.futures import ProcessPoolExecutor
+from dataclasses import replace
 
 import numpy as np
 
@@ -290,6 +291,9 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     # (MeshOptions.for_mach; the same mesh when the options say so)
     opt = options or MeshOptions()
     opt_sup = opt.for_mach(MACH_SUPERSONIC_MIN)
+    if len(sup):
+        # the nose tip subinclined at the sweep's largest Mach (panair.mesh._sharpened_tip)
+        opt_sup = replace(opt_sup, tip_mach=tuple(float(m) for m in sup))
     nets = mesh_rocket(geometry, symmetric=symmetric, options=opt)
     nets_sup = nets if opt_sup == opt else mesh_rocket(geometry, symmetric=symmetric,
                                                        options=opt_sup)
