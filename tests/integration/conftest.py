@@ -31,7 +31,8 @@ class Route:
     truncate: bool = False        # announce the full length, send half, close
     fail_first: int = 0           # answer 500 to the first N requests
     calls: int = 0
-    #: (query parameter, {value: body}): the body chosen by one query value (e.g. an NCSS ``time``)
+    #: (query parameter, {value: body}): the body chosen by one query value (e.g. an NCSS ``time``),
+    #: or ((parameters, ...), {(values, ...): body}) by several (``time`` and ``ensCoord``)
     by_query: tuple | None = None
 
 
@@ -71,7 +72,9 @@ class Loopback:
                 data, status = route.body, route.status
                 if route.by_query is not None:
                     name, bodies = route.by_query
-                    value = parse_qs(parts.query).get(name, [None])[0]
+                    query = parse_qs(parts.query)
+                    value = (tuple(query.get(n, [None])[0] for n in name) if isinstance(name, tuple)
+                             else query.get(name, [None])[0])
                     if value not in bodies:
                         return self._send(400, f"no recorded response for {name}={value}\n".encode(),
                                           "text/plain")
