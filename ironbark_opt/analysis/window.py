@@ -351,6 +351,7 @@ def plot_window(window: LaunchWindow, filename=None):
         panels.append(("members go [-]", [("members_go_fraction", "fraction of members go")]))
     fig, axes = plt.subplots(len(panels), 1, figsize=(8, 2.1 * len(panels) + 0.8), sharex=True)
     nogo = [r["hour_offset_h"] for r in rows if not r["go"]]
+    half = 0.5 * (float(np.min(np.diff(hrs))) if hrs.size > 1 else 1.0)       # [h] shading of an hour
     for ax, (ylabel, series) in zip(axes, panels):
         for key, label in series:
             line, = ax.plot(hrs, [r.get(key, np.nan) for r in rows], "o-", ms=4,
@@ -368,6 +369,7 @@ def plot_window(window: LaunchWindow, filename=None):
             ax.plot(*zip(*pts), ".", color="0.35", ms=3, label="members")
         if series[0][0] == "members_go_fraction":
             ax.axhline(window.min_go_fraction, color="tab:red", ls=":", lw=1, label="go threshold")
+        if series[0][0] in ("members_go_fraction", "probability_in_band"):
             ax.set_ylim(-0.05, 1.05)
         if series[0][0] == "apogee_agl_m" and window.target_agl_m:
             ax.axhline(window.target_agl_m, color="k", ls="--", lw=1, label="target")
@@ -376,7 +378,7 @@ def plot_window(window: LaunchWindow, filename=None):
         if series[0][0] == "rail_exit_speed_mps" and window.limits.min_rail_speed is not None:
             ax.axhline(window.limits.min_rail_speed, color="tab:purple", ls=":", lw=1, label="min rail-exit speed")
         for h in nogo:
-            ax.axvspan(h - 0.5, h + 0.5, color="tab:red", alpha=0.08, lw=0)
+            ax.axvspan(h - half, h + half, color="tab:red", alpha=0.08, lw=0)
         handles, labels = ax.get_legend_handles_labels()
         if nogo and ax is axes[0]:
             handles.append(Patch(color="tab:red", alpha=0.15))

@@ -112,6 +112,10 @@ def card_ensemble(row: dict, forecast: str, band=None) -> dict:
     keys = ("apogee_agl_m", "apogee_p05_agl_m", "apogee_p95_agl_m", "apogee_drift_p95_m",
             "rail_exit_speed_p05_mps", "rail_exit_wind_p95_mps", "members_flown", "members_go",
             "probability_in_band")
-    out = {"forecast": forecast.upper(), "member": row["members"][0]["member"], "band_m": band}
+    flown = [m for m in row["members"] if "error" not in m]
+    out = {"forecast": forecast.upper(), "member": flown[0]["member"], "band_m": band}
     out.update({k: row[k] for k in keys if k in row})
+    if all("landing_east_m" in m for m in flown):     # every member's landing point, for the map
+        out.update(landing_east_m=[m["landing_east_m"] for m in flown],
+                   landing_north_m=[m["landing_north_m"] for m in flown])
     return out

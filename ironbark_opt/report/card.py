@@ -261,6 +261,10 @@ def _map(card, ax):
         ax.set_title(f"{card.rocket}: nominal flight\n{_short(card.atmosphere)}", fontsize=10)
     if card.track is not None:
         ax.plot(*card.track, color="0.45", lw=1.0, label="ground track (nominal)")
+    ens = card.ensemble or {}
+    if "landing_east_m" in ens:
+        ax.plot(ens["landing_east_m"], ens["landing_north_m"], "x", color="0.3", ms=5,
+                label=f"{ens['forecast']} members' landings")
     ax.plot([card.apogee_east_m], [card.apogee_north_m], "D", color="C4", ms=6, label="nominal apogee")
     if card.landing_east_m is not None:
         ax.plot([card.landing_east_m], [card.landing_north_m], "X", color="C3", ms=8, label="nominal landing")
