@@ -81,6 +81,26 @@ def test_gefs_member_profile_is_the_built_column(thredds):
     np.testing.assert_allclose(col.wind_north, 0.0, atol=1e-12)
 
 
+def test_tds4_answer_with_every_member_is_filtered_to_the_one_asked(thredds):
+    """TDS 4 writes all members with an ``ensMember`` column (CSVPointDataWriter): the rows of
+    the member asked for are kept, in the TDS 4 header names (date/lat/lon/vertCoord)."""
+    from ironbark_opt.atmosphere.forecast import forecast_profile
+
+    rows = {m: _body(0, m).decode().splitlines() for m in (0, 1)}
+    head = ('date,lat[unit="degrees_north"],lon[unit="degrees_east"],ensMember,vertCoord[unit="Pa"],'
+            + rows[0][0].split(",", 5)[5])
+    lines = [head]
+    for r0, r1 in zip(rows[0][1:], rows[1][1:]):             # interleaved members, as TDS 4 loops
+        for m, r in ((0, r0), (1, r1)):
+            c = r.split(",")
+            lines.append(",".join([c[0], c[3], c[4], str(m), c[1]] + c[5:]))
+    thredds.route(GEFS, "\n".join(lines) + "\n")
+    col = forecast_profile("gefs", T0, site="spaceport_america", member=1)
+    np.testing.assert_allclose(col.wind_east, WIND[1] * _factor(0), atol=1e-9)
+    file = {float(r.split(",")[1]): float(r.split(",")[6]) for r in rows[1][1:]}
+    assert all(T == pytest.approx(file[p]) for p, T in zip(col.pressure[1:], col.temperature[1:]))
+
+
 def test_gefs_window_members_table_plot_card(thredds, tmp_path, monkeypatch):
     plot, card = tmp_path / "window.png", tmp_path / "card.png"
     res = CliRunner().invoke(main, _window("--members", "3", "--target", "3000m", "--band", "5",
