@@ -62,10 +62,6 @@ def choose_members(available, count: int | None, dataset: str) -> tuple[int, ...
 
 def member_columns(dataset_url: str, latitude: float, longitude: float, time, member: int,
                    source: str = "THREDDS GEFS") -> dict:
-    """:func:`ncss.point_columns` of one member (after checking it is on the Ensemble axis)."""
-    members = ensemble_members(dataset_url, source)
-    if member not in members:
-        raise InputError(f"member {member} is not in the dataset (members {members[0]}..{members[-1]})",
-                         source=f"{dataset_url}/dataset.xml", field="ens")
+    """:func:`ncss.point_columns` of one member (which checks it is on the variables' Ensemble axis)."""
     return ncss.point_columns(dataset_url, latitude, longitude, time, source=f"{source} member {member}",
                               variables=ENSEMBLE_VARIABLES, member=member)

@@ -243,6 +243,12 @@ def point_columns(dataset_url: str, latitude: float, longitude: float, time: dat
     if missing:
         raise InputError(f"the dataset has no {', '.join(missing)}", source=dataset_url,
                          field="var")
+    if member is not None:
+        off = [v for v in variables.values()
+               if not any(abs(member - x) < 1e-9 for x in info.ensemble.get(v, ("", ()))[1])]
+        if off:
+            raise InputError(f"ensemble member {member:g} is not on the Ensemble axis of {off[0]}",
+                             source=f"{dataset_url}/dataset.xml", field=off[0])
     if info.time_begin and info.time_end and not info.time_begin <= time <= info.time_end:
         raise InputError(
             f"forecast time {time:%Y-%m-%dT%H:%MZ} is outside the model run(s) available "

@@ -198,3 +198,15 @@ def test_gefs_answer_missing_the_member_is_a_network_error(thredds):
     res = CliRunner().invoke(main, _window("--members", "1", hours=1))
     assert res.exit_code == 3, res.output
     assert "ensMember" in res.stderr and "member 0" in res.stderr
+
+
+def test_member_off_the_ensemble_axis(thredds):
+    from ironbark_opt.atmosphere.forecast import forecast_profile
+    from ironbark_opt.errors import InputError
+
+    with pytest.raises(InputError, match=r"member 25 is not on the Ensemble axis") as err:
+        forecast_profile("gefs", T0, site="spaceport_america", member=25)
+    assert "Global_1p0deg_Ensemble/members/Best/dataset.xml" in str(err.value)
+    assert "Geopotential_height_isobaric_ens" in str(err.value)
+    with pytest.raises(InputError, match="ensemble: give a member"):
+        forecast_profile("gefs", T0, site="spaceport_america")
