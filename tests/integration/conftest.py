@@ -191,3 +191,17 @@ def tc_server(loopback, net_env, monkeypatch):
     """The loopback server standing in for ThrustCurve.org (API under ``/api/v1``)."""
     monkeypatch.setenv("IRONBARK_THRUSTCURVE_URL", loopback.url + THRUSTCURVE_API)
     return loopback
+
+
+def scaled_point_csv(path: Path, stamp: str, factor: float, wind_columns: tuple[int, int]) -> bytes:
+    """An NCSS point CSV (header + rows) with its first column (time) set to ``stamp`` and the two
+    wind columns multiplied by ``factor``: one forecast hour built from one file."""
+    lines = path.read_text().splitlines()
+    out = [lines[0]]
+    i, j = wind_columns
+    for line in lines[1:]:
+        cells = line.split(",")
+        cells[0] = stamp
+        cells[i], cells[j] = (f"{float(c) * factor:.6f}" for c in (cells[i], cells[j]))
+        out.append(",".join(cells))
+    return ("\n".join(out) + "\n").encode()

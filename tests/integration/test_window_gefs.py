@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from conftest import scaled_point_csv
 from ironbark_opt.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -36,15 +37,8 @@ def _factor(k):
 
 
 def _body(k, m):
-    lines = (W / f"ncss_gefs_member{m}_point_csv_built.csv").read_text().splitlines()
-    stamp = (T0 + timedelta(hours=STEP * k)).strftime("%Y-%m-%dT%H:%M:%SZ")
-    out = [lines[0]]
-    for line in lines[1:]:
-        c = line.split(",")
-        c[0] = stamp
-        c[7], c[8] = (f"{float(x) * _factor(k):.6f}" for x in c[7:9])
-        out.append(",".join(c))
-    return ("\n".join(out) + "\n").encode()
+    return scaled_point_csv(W / f"ncss_gefs_member{m}_point_csv_built.csv",
+                            (T0 + timedelta(hours=STEP * k)).strftime("%Y-%m-%dT%H:%M:%SZ"), _factor(k), (7, 8))
 
 
 @pytest.fixture
@@ -210,3 +204,19 @@ def test_member_off_the_ensemble_axis(thredds):
     assert "Geopotential_height_isobaric_ens" in str(err.value)
     with pytest.raises(InputError, match="ensemble: give a member"):
         forecast_profile("gefs", T0, site="spaceport_america")
+
+
+def test_gefs_with_a_dispersion_spec_pools_the_members_monte_carlo(thredds):
+    spec = str(ROOT / "examples" / "calisto" / "dispersions.toml")
+    res = CliRunner().invoke(main, _window("--members", "2", "--target", "3000m", "--spec", spec, "--samples", "6",
+                                           "--seed", "3", "--json", hours=1))
+    assert res.exit_code == 0, res.output
+    h = json.loads(res.output)["hours"][0]
+    members = h["members"]
+    assert h["monte_carlo_samples"] == 12 and all(m["monte_carlo_samples"] == 6 for m in members)
+    # the same samples per member (common seed): the pooled fraction in band is the members' mean
+    assert h["probability_in_band"] == pytest.approx(np.mean([m["probability_in_band"] for m in members]))
+    assert h["apogee_p05_agl_m"] < h["apogee_p95_agl_m"]
+    # the hour's band is the pooled flights', not the two members' nominal apogees
+    nominal = np.percentile([m["apogee_agl_m"] for m in members], [5, 95])
+    assert (h["apogee_p05_agl_m"], h["apogee_p95_agl_m"]) != pytest.approx(tuple(nominal))
