@@ -130,8 +130,9 @@ class LaunchWindow:
         lines = [f"Launch window for {self.name} on {self.motor}: {self.forecast.upper()} forecast at {self.site}"
                  + (f", target {self.target_agl_m:.0f} m AGL +/- {self.band_m:g} m" if self.target_agl_m else "")]
         if self.members:
-            lines.append(f"  {len(self.members)} ensemble members per hour (ballast solved on member "
-                         f"{self.members[0]}): median, 5 and 95 % over the members; go = members go / flown")
+            solved = f" (ballast solved on member {self.members[0]})" if self.target_agl_m else ""
+            lines.append(f"  {len(self.members)} ensemble members per hour{solved}: median, 5 and 95 % over the "
+                         "members; go = members go / flown")
         lines += [head, units]
         for h in self.hours:
             if "error" in h:
@@ -163,9 +164,9 @@ def fly_hour(setup, *, target=None, band=None, spec=None, samples=200, seed=None
     """The numbers of one hour (``setup`` already flies that hour's atmosphere); numeric-only.
 
     ``ballast`` ``(kg, x_m)``, if given, is flown instead of solving for ``target`` (which then
-    only scores the Monte Carlo).  ``objects``, if given, receives what the numbers came from: ``flight``, ``parameters``
-    and, where flown, ``solution`` (the ballast) and ``dispersion`` (the Monte Carlo), so a
-    flight card of the hour prints the same numbers."""
+    only scores the Monte Carlo).  ``objects``, if given, receives what the numbers came from:
+    ``flight``, ``parameters`` and, where flown, ``solution`` (the ballast) and ``dispersion``
+    (the Monte Carlo), so a flight card of the hour prints the same numbers."""
     objects = {} if objects is None else objects
     from ironbark_opt.flight import flight_model, simulate
 
