@@ -122,6 +122,10 @@ class Dispersion:
         return (f"Dispersion({self.name!r}: {self.samples} samples, apogee {a['mean']:.1f} +/- {a['std']:.1f} m "
                 f"AGL, seed {self.seed})")
 
+    def column(self, name: str) -> np.ndarray:
+        """One per-sample column (a copy), e.g. ``apogee_agl_m``."""
+        return np.array(self._table[name])
+
     def to_dataframe(self):
         """One row per sample (a new ``pandas.DataFrame``): dispersed parameters
         (unit-suffixed, angles in degrees) and the outputs."""

@@ -1,6 +1,6 @@
 """Launch window: the rocket flown through every forecast hour.
 
-:func:`launch_window` fetches the RAP or GFS forecast over the site for each
+:func:`launch_window` fetches the RAP, GFS or GEFS forecast over the site for each
 hour (``forecast.setup_with_forecast``: THREDDS NCSS, NOMADS, archive, all
 through :mod:`ironbark_opt.net` and its cache, so a second run is offline),
 flies the nominal flight to landing, optionally solves the ballast for a
@@ -9,9 +9,11 @@ with that ballast (5-95 % apogee band, P(in band)), and marks each hour go or
 no-go against the user's limits: wind at rail exit, static margin at rail
 exit, rail-exit speed.
 
-RAP and GFS are deterministic forecasts: one profile per hour.  Ensemble
-members (GEFS) are not fetched; the dispersion spec (``wind_scale``,
-``wind_east``/``wind_north``) carries the forecast's wind uncertainty.
+RAP and GFS are deterministic forecasts: one profile per hour; the dispersion
+spec (``wind_scale``, ``wind_east``/``wind_north``) carries the forecast's wind
+uncertainty.  GEFS is an ensemble: every member of an hour is flown as its own
+atmosphere and the hour is summarised over the members
+(:mod:`ironbark_opt.analysis.window_ensemble`).
 
 Every hour builds its own model (the profile is part of the equations) and
 flies on the CasADi VM (``jit=False``): a C compile per hour would cost more
@@ -85,7 +87,11 @@ class LaunchWindow:
     ``ballast_x_m``, ``probability_in_band``, ``landing_ellipse`` (1-sigma, from the Monte
     Carlo: ``center_east_m``, ``semi_major_m``, ``azimuth_deg``, ...), ``go``, ``no_go_reasons``,
     ``atmosphere``),
-    or ``{"time_utc", "error"}`` for an hour without a forecast.
+    or ``{"time_utc", "error"}`` for an hour without a forecast.  An ensemble hour has the
+    members' median under those keys, their 5 and 95 % points (``apogee_p05_agl_m``,
+    ``rail_exit_wind_p95_mps``, ... see ``window_ensemble.SPREAD``), ``members_flown``,
+    ``members_go``, ``members_go_fraction`` and ``members``: one row per member (``member``
+    and the keys of a deterministic hour).
     """
 
     name: str
@@ -97,6 +103,9 @@ class LaunchWindow:
     limits: WindowLimits
     hours: tuple
     notes: tuple = field(default_factory=tuple)
+    #: ensemble members flown per hour (GEFS perturbation numbers, control first); () = deterministic
+    members: tuple = ()
+    min_go_fraction: float = 1.0
 
     def __repr__(self) -> str:
         go = sum(1 for h in self.hours if h.get("go"))
@@ -110,15 +119,21 @@ class LaunchWindow:
     def to_dict(self) -> dict:
         return {"rocket": self.name, "motor": self.motor, "forecast": self.forecast, "site": self.site,
                 "target_agl_m": self.target_agl_m, "band_m": self.band_m, "limits": self.limits.to_dict(),
-                "ensemble_members": 1, "hours": [dict(h) for h in self.hours], "notes": list(self.notes)}
+                "ensemble_members": len(self.members) or 1, "members": list(self.members),
+                "min_go_fraction": self.min_go_fraction if self.members else None,
+                "hours": [dict(h) for h in self.hours], "notes": list(self.notes)}
 
     def summary(self) -> str:
         """The table, one line per hour (a string)."""
         head = f"  {'time (UTC)':17s}" + "".join(f" {label:>11s}" for _, label, _ in COLUMNS) + "  go"
         units = f"  {'':17s}" + "".join(f" {'[' + unit + ']':>11s}" for _, _, unit in COLUMNS)
         lines = [f"Launch window for {self.name} on {self.motor}: {self.forecast.upper()} forecast at {self.site}"
-                 + (f", target {self.target_agl_m:.0f} m AGL +/- {self.band_m:g} m" if self.target_agl_m else ""),
-                 head, units]
+                 + (f", target {self.target_agl_m:.0f} m AGL +/- {self.band_m:g} m" if self.target_agl_m else "")]
+        if self.members:
+            solved = f" (ballast solved on member {self.members[0]})" if self.target_agl_m else ""
+            lines.append(f"  {len(self.members)} ensemble members per hour{solved}: median, 5 and 95 % over the "
+                         "members; go = members go / flown")
+        lines += [head, units]
         for h in self.hours:
             if "error" in h:
                 lines.append(f"  {h['time_utc'][:16]:17s} no forecast: {h['error'].splitlines()[0][:90]}")
@@ -128,8 +143,9 @@ class LaunchWindow:
                 v = h.get(key)
                 cells.append(f" {'-':>11s}" if v is None else f" {v:11.3f}" if unit in ("-", "kg") else
                              f" {v:11.2f}" if unit == "cal" else f" {v:11.1f}")
-            lines.append(f"  {h['time_utc'][:16]:17s}" + "".join(cells) + ("  GO" if h["go"] else
-                                                                           "  NO-GO: " + "; ".join(h["no_go_reasons"])))
+            count = f" {h['members_go']}/{h['members_flown']}" if "members_go" in h else ""
+            lines.append(f"  {h['time_utc'][:16]:17s}" + "".join(cells) + (f"  GO{count}" if h["go"] else
+                         f"  NO-GO{count}: " + "; ".join(h["no_go_reasons"])))
         lines += [f"  {n}" for n in self.notes]
         return "\n".join(lines)
 
@@ -144,19 +160,23 @@ def rail_exit_wind(setup, flight) -> float:
 
 
 def fly_hour(setup, *, target=None, band=None, spec=None, samples=200, seed=None, ballast_options=None,
-             limits: WindowLimits = WindowLimits(), objects: dict | None = None) -> dict:
+             limits: WindowLimits = WindowLimits(), objects: dict | None = None, ballast=None) -> dict:
     """The numbers of one hour (``setup`` already flies that hour's atmosphere); numeric-only.
 
-    ``objects``, if given, receives what the numbers came from: ``flight``, ``parameters``
-    and, where flown, ``solution`` (the ballast) and ``dispersion`` (the Monte Carlo), so a
-    flight card of the hour prints the same numbers."""
+    ``ballast`` ``(kg, x_m)``, if given, is flown instead of solving for ``target`` (which then
+    only scores the Monte Carlo).  ``objects``, if given, receives what the numbers came from:
+    ``flight``, ``parameters`` and, where flown, ``solution`` (the ballast) and ``dispersion``
+    (the Monte Carlo), so a flight card of the hour prints the same numbers."""
     objects = {} if objects is None else objects
     from ironbark_opt.flight import flight_model, simulate
 
     model = flight_model(setup, jit=False)
     overrides: dict = {}
     row: dict = {}
-    if target is not None:
+    if ballast is not None:
+        row.update(ballast_kg=float(ballast[0]), ballast_x_m=float(ballast[1]))
+        overrides = {"ballast_mass": float(ballast[0]), "ballast_x": float(ballast[1])}
+    elif target is not None:
         from ironbark_opt.optimise.ballast import solve_ballast
         sol = solve_ballast(setup, target, **dict(ballast_options or {}))
         row.update(ballast_kg=sol.values["ballast_kg"], ballast_x_m=sol.values["ballast_x_m"],
@@ -196,13 +216,13 @@ def fly_hour(setup, *, target=None, band=None, spec=None, samples=200, seed=None
 def launch_window(setup, forecast: str, site, start, hours: int, *, step_hours: int = 1, target=None,
                   band: float = 50.0, spec=None, samples: int = 200, seed: int | None = None,
                   limits: WindowLimits = WindowLimits(), ballast_options: Mapping | None = None,
-                  progress=None) -> LaunchWindow:
-    """Fly ``setup`` through the ``forecast`` ("rap" or "gfs") of every hour from ``start``.
+                  progress=None, members: int | None = None, min_go_fraction: float = 1.0) -> LaunchWindow:
+    """Fly ``setup`` through the ``forecast`` ("rap", "gfs" or "gefs") of every hour from ``start``.
 
     Parameters
     ----------
     setup : FlightSetup
-    forecast : {"rap", "gfs"}
+    forecast : {"rap", "gfs", "gefs"}
     site : Site or str
         Launch-site preset (see :mod:`ironbark_opt.atmosphere.sites`).
     start : datetime or ISO 8601 str
@@ -223,16 +243,27 @@ def launch_window(setup, forecast: str, site, start, hours: int, *, step_hours: 
         Passed to ``solve_ballast`` (``mass_max``, ``ballast_x``, ...).
     progress : callable, optional
         Called with (index, hour dict) after each hour.
+    members : int, optional
+        Ensemble forecasts (GEFS): fly the first ``members`` members of the dataset's Ensemble
+        axis (control first; default all).  With a target the ballast is solved on the first.
+    min_go_fraction : float
+        Ensemble forecasts: an hour is go when at least this fraction of its members is go.
 
     Returns
     -------
     LaunchWindow
     """
     from ironbark_opt.analysis.distributions import DispersionSpec, load_spec
-    from ironbark_opt.atmosphere.forecast import setup_with_forecast
+    from ironbark_opt.analysis.window_ensemble import fly_members
+    from ironbark_opt.atmosphere.forecast import ENSEMBLES, gefs_members, setup_with_forecast
     from ironbark_opt.atmosphere.ncss import parse_iso
     from ironbark_opt.atmosphere.sites import get_site
 
+    if forecast not in ENSEMBLES and members is not None:
+        raise InputError(f"{forecast.upper()} is deterministic (one profile per hour): it has no members",
+                         field="--members")
+    if not 0.0 < min_go_fraction <= 1.0:
+        raise InputError(f"must be in (0, 1], got {min_go_fraction}", field="--min-go-fraction")
     for name, value in (("hours", hours), ("step_hours", step_hours), ("samples", samples)):
         if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
             raise InputError(f"{name} must be a positive integer, got {value!r}", field=name)
@@ -244,12 +275,20 @@ def launch_window(setup, forecast: str, site, start, hours: int, *, step_hours: 
         spec = load_spec(spec)
     if spec is not None and seed is None:
         seed = spec.seed if spec.seed is not None else 0
+    flown_members = gefs_members(members) if forecast in ENSEMBLES else ()
     rows, network_errors = [], []
     for k in range(int(hours)):
         when = t0 + timedelta(hours=k * int(step_hours))
         stamp = when.strftime("%Y-%m-%dT%H:%M:%SZ")
         try:
-            hour_setup, columns = setup_with_forecast(setup, forecast, when, where)
+            if flown_members:
+                ens_row, columns = fly_members(setup, forecast, when, where, flown_members, target=target,
+                                               band=band, spec=spec, samples=samples, seed=seed,
+                                               ballast_options=ballast_options, limits=limits,
+                                               min_go_fraction=min_go_fraction)
+                hour_setup = None
+            else:
+                hour_setup, columns = setup_with_forecast(setup, forecast, when, where)
         except (InputError, NetworkError) as err:
             if isinstance(err, NetworkError):
                 network_errors.append(err)
@@ -260,16 +299,22 @@ def launch_window(setup, forecast: str, site, start, hours: int, *, step_hours: 
         row = {"time_utc": stamp, "hour_offset_h": float(k * step_hours),
                "valid_time_utc": None if columns.valid_time is None else columns.valid_time.strftime(
                    "%Y-%m-%dT%H:%M:%SZ"),
-               "site_elevation_m": float(hour_setup.site_elevation), "atmosphere": columns.source}
-        row.update(fly_hour(hour_setup, target=target, band=band, spec=spec, samples=samples, seed=seed,
-                            ballast_options=ballast_options, limits=limits))
+               "site_elevation_m": float(hour_setup.site_elevation if hour_setup is not None else
+                                         where.elevation if columns.ground_elevation is None else
+                                         columns.ground_elevation), "atmosphere": columns.source}
+        if hour_setup is None:
+            row.update(ens_row)
+        else:
+            row.update(fly_hour(hour_setup, target=target, band=band, spec=spec, samples=samples, seed=seed,
+                                ballast_options=ballast_options, limits=limits))
         rows.append(row)
         if progress:
             progress(k, row)
     if not any("error" not in r for r in rows):
         text = f"no forecast for any of the {hours} hours; first: {rows[0]['error']}"
         raise NetworkError(text) if network_errors else InputError(text, field="--from")
-    notes = [f"{forecast.upper()} is deterministic: one profile per hour, no ensemble members"]
+    notes = [f"{forecast.upper()}: members {', '.join(map(str, flown_members))} flown every hour"
+             if flown_members else f"{forecast.upper()} is deterministic: one profile per hour, no ensemble members"]
     if spec is not None:
         notes.append(f"Monte Carlo: {samples} samples per hour, seed {seed} (the same samples every hour)"
                      + (", flown with each hour's ballast" if target is not None else ""))
@@ -278,14 +323,18 @@ def launch_window(setup, forecast: str, site, start, hours: int, *, step_hours: 
                         site=getattr(where, "name", str(site)),
                         target_agl_m=flown[0].get("target_agl_m") if target is not None else None,
                         band_m=float(band) if target is not None else None, limits=limits, hours=tuple(rows),
-                        notes=tuple(notes))
+                        notes=tuple(notes), members=tuple(flown_members), min_go_fraction=float(min_go_fraction))
 
 
 def plot_window(window: LaunchWindow, filename=None):
     """Apogee (with its 5-95 % band), drift, rail-exit speed, ballast and P(in band) against
-    the hour, no-go hours shaded; returns the Figure (saved to ``filename`` if given)."""
+    the hour, no-go hours shaded; an ensemble window adds the members' apogees, the 5-95 % band
+    over the members of every series and the fraction of members go.  Returns the Figure (saved
+    to ``filename`` if given)."""
     import matplotlib.pyplot as plt
     from matplotlib.patches import Patch
+
+    from ironbark_opt.analysis.window_ensemble import SPREAD
 
     rows = window.flown
     hrs = np.array([r["hour_offset_h"] for r in rows])
@@ -297,15 +346,32 @@ def plot_window(window: LaunchWindow, filename=None):
                                ("rail_exit_wind_mps", "wind at rail exit")]),
               ("ballast [kg]", [("ballast_kg", "ballast needed" if window.target_agl_m else "ballast flown")])]
     if any("probability_in_band" in r for r in rows):
-        panels.append(("P(in band) [-]", [("probability_in_band", f"P(|apogee - target| <= {window.band_m:g} m)")]))
+        panels.append(("P(in band) [-]", [("probability_in_band", f"P(|apogee - target| <= {window.band_m:g} m)"
+                                           + (" over members" if window.members else ""))]))
+    if window.members:
+        panels.append(("members go [-]", [("members_go_fraction", "fraction of members go")]))
     fig, axes = plt.subplots(len(panels), 1, figsize=(8, 2.1 * len(panels) + 0.8), sharex=True)
     nogo = [r["hour_offset_h"] for r in rows if not r["go"]]
+    half = 0.5 * (float(np.min(np.diff(hrs))) if hrs.size > 1 else 1.0)       # [h] shading of an hour
     for ax, (ylabel, series) in zip(axes, panels):
         for key, label in series:
-            ax.plot(hrs, [r.get(key, np.nan) for r in rows], "o-", ms=4, label=label)
+            line, = ax.plot(hrs, [r.get(key, np.nan) for r in rows], "o-", ms=4,
+                            label=label + (" (median of members)" if window.members and key in SPREAD else ""))
+            if window.members and key in SPREAD and key != "apogee_agl_m":
+                ax.fill_between(hrs, [r[SPREAD[key][0]] for r in rows], [r[SPREAD[key][1]] for r in rows],
+                                color=line.get_color(), alpha=0.15, label=f"{label}: 5-95 % over members")
         if series[0][0] == "apogee_agl_m" and "apogee_p05_agl_m" in rows[0]:
+            pooled = "monte_carlo_samples" in rows[0]
             ax.fill_between(hrs, [r["apogee_p05_agl_m"] for r in rows], [r["apogee_p95_agl_m"] for r in rows],
-                            alpha=0.25, label="Monte Carlo 5-95 %")
+                            alpha=0.25, label="5-95 % over members" + (" x Monte Carlo" if pooled else "")
+                            if window.members else "Monte Carlo 5-95 %")
+        if series[0][0] == "apogee_agl_m" and window.members:
+            pts = [(r["hour_offset_h"], m["apogee_agl_m"]) for r in rows for m in r["members"] if "error" not in m]
+            ax.plot(*zip(*pts), ".", color="0.35", ms=3, label="members")
+        if series[0][0] == "members_go_fraction":
+            ax.axhline(window.min_go_fraction, color="tab:red", ls=":", lw=1, label="go threshold")
+        if series[0][0] in ("members_go_fraction", "probability_in_band"):
+            ax.set_ylim(-0.05, 1.05)
         if series[0][0] == "apogee_agl_m" and window.target_agl_m:
             ax.axhline(window.target_agl_m, color="k", ls="--", lw=1, label="target")
         if series[0][0] == "rail_exit_speed_mps" and window.limits.max_rail_wind is not None:
@@ -313,7 +379,7 @@ def plot_window(window: LaunchWindow, filename=None):
         if series[0][0] == "rail_exit_speed_mps" and window.limits.min_rail_speed is not None:
             ax.axhline(window.limits.min_rail_speed, color="tab:purple", ls=":", lw=1, label="min rail-exit speed")
         for h in nogo:
-            ax.axvspan(h - 0.5, h + 0.5, color="tab:red", alpha=0.08, lw=0)
+            ax.axvspan(h - half, h + half, color="tab:red", alpha=0.08, lw=0)
         handles, labels = ax.get_legend_handles_labels()
         if nogo and ax is axes[0]:
             handles.append(Patch(color="tab:red", alpha=0.15))
@@ -323,8 +389,12 @@ def plot_window(window: LaunchWindow, filename=None):
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel(f"hours after {t0} UTC [h]")
     source = rows[0].get("atmosphere", window.forecast.upper()).split(" http")[0]
+    if window.members:
+        source = source.replace(f" member {window.members[0]}", "")
+    per_hour = (f"{len(window.members)} ensemble members per hour" if window.members else
+                "one profile per hour")
     fig.suptitle(f"Launch window: {window.name} ({window.motor}) at {window.site}\n"
-                 f"atmosphere: {source} forecast, one profile per hour", fontsize=10)
+                 f"atmosphere: {source} forecast, {per_hour}", fontsize=10)
     fig.tight_layout()
     if filename is not None:
         fig.savefig(filename, dpi=120)
@@ -339,7 +409,12 @@ def window_card(setup, window: LaunchWindow, forecast: str, site, *, hour: str |
     (its ``time_utc``), else the first go hour, else the first hour flown.  The hour is
     flown again exactly as :func:`launch_window` flew it (the forecast comes from the
     cache, the Monte Carlo has the same seed), so the card prints the window's numbers.
+    An ensemble hour's card is its first member's flight (the control run, which the
+    ballast was solved on) with the hour's numbers over the members.
     Returns ``(card, row)``; numeric-only."""
+    import dataclasses
+
+    from ironbark_opt.analysis.window_ensemble import card_ensemble
     from ironbark_opt.atmosphere.forecast import setup_with_forecast
     from ironbark_opt.atmosphere.ncss import parse_iso
     from ironbark_opt.atmosphere.sites import get_site
@@ -356,7 +431,8 @@ def window_card(setup, window: LaunchWindow, forecast: str, site, *, hour: str |
         rows = [r for r in flown if r["go"]] or flown
     row = rows[0]
     where = get_site(site) if isinstance(site, str) else site
-    hour_setup, _ = setup_with_forecast(setup, forecast, parse_iso(row["time_utc"]), where)
+    member = window.members[0] if window.members else None
+    hour_setup, _ = setup_with_forecast(setup, forecast, parse_iso(row["time_utc"]), where, member=member)
     if spec is not None and seed is None:
         seed = row.get("monte_carlo_seed")
     objects: dict = {}
@@ -366,4 +442,6 @@ def window_card(setup, window: LaunchWindow, forecast: str, site, *, hour: str |
                       dispersion=objects.get("dispersion"),
                       apogee_per_100g_m=apogee_per_100g(hour_setup, objects["parameters"]),
                       launch_time=row["time_utc"], site_name=getattr(where, "name", str(site)))
+    if member is not None:
+        card = dataclasses.replace(card, ensemble=card_ensemble(row, forecast, window.band_m))
     return card, row

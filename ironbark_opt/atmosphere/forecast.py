@@ -1,4 +1,5 @@
-"""NOAA RAP (North America, hourly) and GFS (global) forecast profiles over a site.
+"""NOAA RAP (North America, hourly), GFS (global) and GEFS (global ensemble) forecast
+profiles over a site.
 
 :func:`forecast_profile` asks the access paths in turn and returns the first
 that works, converted to :class:`~ironbark_opt.atmosphere.levels.ProfileColumns`
@@ -13,7 +14,8 @@ model run and valid time recorded):
 The order can be changed with ``IRONBARK_FORECAST_SOURCES`` (comma
 separated) or ``[forecast] sources = [...]`` in the user config file; the
 THREDDS dataset paths with ``[forecast.thredds_paths]``.  When every path
-fails, the error lists each one's reason.  Numeric-only (I/O).
+fails, the error lists each one's reason.  GEFS members (``member=``) come
+from THREDDS only (:mod:`ironbark_opt.atmosphere.ensemble`).  Numeric-only (I/O).
 """
 from __future__ import annotations
 
@@ -22,16 +24,19 @@ import os
 from datetime import datetime, timezone
 
 from ironbark_opt import config, net
-from ironbark_opt.atmosphere import grib, ncss
+from ironbark_opt.atmosphere import ensemble, grib, ncss
 from ironbark_opt.atmosphere.levels import ProfileColumns, build_columns, geometric_height
 from ironbark_opt.atmosphere.sites import Site, get_site
 from ironbark_opt.errors import InputError, NetworkError
 
 #: NCSS dataset paths below the THREDDS base URL ("Best" = best time series).
 THREDDS_PATHS = {"rap": "ncss/grid/grib/NCEP/RAP/CONUS_13km/Best",
-                 "gfs": "ncss/grid/grib/NCEP/GFS/Global_0p25deg/Best"}
+                 "gfs": "ncss/grid/grib/NCEP/GFS/Global_0p25deg/Best",
+                 "gefs": ensemble.GEFS_PATH}
 DEFAULT_SOURCES = ("thredds", "nomads", "archive")
-MODEL_NAMES = {"rap": "RAP", "gfs": "GFS"}
+MODEL_NAMES = {"rap": "RAP", "gfs": "GFS", "gefs": "GEFS"}
+#: forecasts with ensemble members (flown one member at a time)
+ENSEMBLES = ("gefs",)
 
 
 def sources_order() -> tuple[str, ...]:
@@ -47,6 +52,13 @@ def sources_order() -> tuple[str, ...]:
     return order
 
 
+
+def gefs_members(count: int | None = None) -> tuple[int, ...]:
+    """The first ``count`` GEFS members of the THREDDS dataset (all when None), control first."""
+    url = _thredds_url("gefs")
+    return ensemble.choose_members(ensemble.ensemble_members(url), count, url)
+
+
 def _thredds_url(model: str) -> str:
     paths = config.load().get("forecast", {}).get("thredds_paths", {})
     return f"{net.endpoint('thredds')}/{paths.get(model, THREDDS_PATHS[model]).strip('/')}"
@@ -55,12 +67,12 @@ def _thredds_url(model: str) -> str:
 def forecast_profile(model: str, time: datetime | str, *, site: Site | str | None = None,
                      latitude: float | None = None, longitude: float | None = None,
                      elevation: float | None = None, sources=None,
-                     now: datetime | None = None) -> ProfileColumns:
+                     now: datetime | None = None, member: int | None = None) -> ProfileColumns:
     """Forecast atmosphere over a launch site.
 
     Parameters
     ----------
-    model : {"rap", "gfs"}
+    model : {"rap", "gfs", "gefs"}
     time : datetime or ISO 8601 str
         Launch time (UTC; naive = UTC).  The nearest forecast time is used
         and recorded as ``valid_time``.
@@ -71,6 +83,8 @@ def forecast_profile(model: str, time: datetime | str, *, site: Site | str | Non
         Access paths to try (default :func:`sources_order`).
     now : datetime, optional
         Current time for choosing the newest published run (tests).
+    member : int, optional
+        Ensemble member (GEFS only, required there; 0 = control).
 
     Raises
     ------
@@ -82,7 +96,10 @@ def forecast_profile(model: str, time: datetime | str, *, site: Site | str | Non
     """
     model = model.lower()
     if model not in THREDDS_PATHS:
-        raise InputError(f"unknown model {model!r}; expected 'rap' or 'gfs'", field="model")
+        raise InputError(f"unknown model {model!r}; expected 'rap', 'gfs' or 'gefs'", field="model")
+    if (model in ENSEMBLES) != (member is not None):
+        raise InputError(f"{MODEL_NAMES[model]} is an ensemble: give a member" if model in ENSEMBLES else
+                         f"{MODEL_NAMES[model]} is deterministic: it has no member {member}", field="member")
     if isinstance(time, str):
         time = ncss.parse_iso(time)
     time = time.replace(tzinfo=timezone.utc) if time.tzinfo is None else \
@@ -98,7 +115,13 @@ def forecast_profile(model: str, time: datetime | str, *, site: Site | str | Non
     failures, network_failed = [], False
     for src in order:
         try:
-            if src == "thredds":
+            if src != "thredds" and model in ENSEMBLES:
+                raise InputError(f"{MODEL_NAMES[model]} members are read through THREDDS NCSS only")
+            if src == "thredds" and model in ENSEMBLES:
+                url = _thredds_url(model)
+                data = ensemble.member_columns(url, latitude, longitude, time, member)
+                label = f"{MODEL_NAMES[model]} member {member} via THREDDS NCSS {url}"
+            elif src == "thredds":
                 url = _thredds_url(model)
                 data = ncss.point_columns(url, latitude, longitude, time,
                                           source=f"THREDDS {MODEL_NAMES[model]}")
@@ -133,13 +156,13 @@ def forecast_profile(model: str, time: datetime | str, *, site: Site | str | Non
     raise NetworkError(text) if network_failed else InputError(text, field="time")
 
 
-def setup_with_forecast(setup, model: str, time, site: Site | str):
-    """``setup`` flying the ``model`` forecast at ``time`` over ``site`` (its ground as the
-    site elevation, its latitude for gravity): ``(new setup, ProfileColumns)``."""
+def setup_with_forecast(setup, model: str, time, site: Site | str, member: int | None = None):
+    """``setup`` flying the ``model`` forecast (its ensemble ``member``) at ``time`` over ``site``
+    (its ground as the site elevation, its latitude for gravity): ``(new setup, ProfileColumns)``."""
     import dataclasses
 
     where = get_site(site) if isinstance(site, str) else site
-    columns = forecast_profile(model, time, site=where)
+    columns = forecast_profile(model, time, site=where, member=member)
     elevation = columns.ground_elevation if columns.ground_elevation is not None else where.elevation
     return dataclasses.replace(setup, atmosphere=columns.to_profile(), site_elevation=float(elevation),
                                latitude=where.latitude, longitude=where.longitude), columns

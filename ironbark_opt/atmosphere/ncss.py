@@ -9,7 +9,15 @@ matched by name.  Variables on different vertical axes are requested
 separately and merged on their common pressure levels.
 
 Winds of Lambert-conformal datasets (RAP) are relative to the grid; they are
-rotated to east/north here.  Numeric-only (I/O and parsing).
+rotated to east/north here.
+
+Ensemble datasets (GEFS) carry an axis of ``axisType="Ensemble"`` (netCDF-Java
+``GribCoverageDataset.makeCoordAxis(CoordinateEns)``: name ``ens``, values the
+GRIB2 perturbation numbers, 0 = control); :attr:`DatasetInfo.ensemble` lists its
+members per grid, and :func:`point_columns` asks for one member with TDS 5's
+``ensCoord`` parameter (``NcssGridParamsBean.ensCoord``).  TDS 4 answers all
+members with an ``ensMember`` column (``CSVPointDataWriter.writeGroupHeader``);
+its rows are filtered to the member.  Numeric-only (I/O and parsing).
 """
 from __future__ import annotations
 
@@ -37,6 +45,8 @@ class DatasetInfo:
     run_time: datetime | None
     projection: dict = field(default_factory=dict)
     latlon_box: tuple | None = None      # (west, east, south, north) [deg]
+    #: grid -> (ensemble axis name, member numbers) for grids with an Ensemble axis
+    ensemble: dict = field(default_factory=dict)
 
 
 def parse_iso(text: str) -> datetime:
@@ -57,12 +67,17 @@ def parse_dataset_xml(content: bytes, source: str = "dataset.xml") -> DatasetInf
     if root.tag != "gridDataset":
         raise InputError(f"expected <gridDataset>, got <{root.tag}>", source=source)
     axis_type = {a.get("name"): a.get("axisType") for a in root.iter("axis")}
-    vertical = {}
+    axes = {a.get("name"): a for a in root.iter("axis")}
+    vertical, ensemble = {}, {}
     for gs in root.iter("gridSet"):
         refs = [r.get("name") for r in gs.findall("axisRef")]
         vert = [r for r in refs if axis_type.get(r) in ("Pressure", "Height", "GeoZ")]
+        ens = [r for r in refs if axis_type.get(r) == "Ensemble"]
+        members = (ens[0], _axis_values(axes[ens[0]], source)) if ens and ens[0] in axes else None
         for g in gs.findall("grid"):
             vertical[g.get("name")] = vert[0] if vert else ""
+            if members:
+                ensemble[g.get("name")] = members
     span = root.find("TimeSpan")
     begin = end = None
     if span is not None and span.findtext("begin") and span.findtext("end"):
@@ -88,7 +103,27 @@ def parse_dataset_xml(content: bytes, source: str = "dataset.xml") -> DatasetInf
             llb = tuple(float(box.findtext(k)) for k in ("west", "east", "south", "north"))
         except (TypeError, ValueError):
             llb = None
-    return DatasetInfo(vertical, begin, end, run, proj, llb)
+    return DatasetInfo(vertical, begin, end, run, proj, llb, ensemble)
+
+
+def _axis_values(axis, source: str) -> tuple[float, ...]:
+    """Coordinate values of a dataset.xml ``<axis>``: listed in ``<values>`` (irregular axes) or
+    ``start + i * resolution`` for ``npts`` points (regular axes; netCDF-Java
+    ``CoverageDatasetCapabilities.writeAxis`` lists values only for irregular axes)."""
+    vals = axis.find("values")
+    name = axis.get("name")
+    try:
+        if vals is not None and (vals.text or "").strip():
+            return tuple(float(v) for v in vals.text.split())
+        n = int(vals.get("npts"))
+        start = float(vals.get("start"))
+        step = float(vals.get("resolution") or 0.0)
+    except (AttributeError, TypeError, ValueError):
+        raise InputError(f"axis {name!r} has no readable values (npts/start/resolution)",
+                         source=source, field=name) from None
+    if n < 1 or (n > 1 and step == 0.0):
+        raise InputError(f"axis {name!r}: {n} points with resolution {step:g}", source=source, field=name)
+    return tuple(start + i * step for i in range(n))
 
 
 _HEADER = re.compile(r'^\s*([^\[]+?)\s*(?:\[unit="?([^"\]]*)"?\])?\s*$')
@@ -132,7 +167,8 @@ def parse_point_csv(content: bytes, source: str = "NCSS CSV") -> dict:
 
 
 def _pressure_column(table: dict, axis: str, source: str) -> np.ndarray:
-    for name in (axis, "vertCoord"):
+    # TDS 4 names it vertCoord, TDS 5's station-profile CSV alt (StationProfileSubsetWriterCSV)
+    for name in (axis, "vertCoord", "alt"):
         if name in table:
             unit, values = table[name]
             scale = {"pa": 1.0, "hpa": 100.0, "mb": 100.0, "millibar": 100.0}.get(unit.lower())
@@ -140,7 +176,7 @@ def _pressure_column(table: dict, axis: str, source: str) -> np.ndarray:
                 raise InputError(f"vertical coordinate in {unit!r}, expected Pa or hPa",
                                  source=source, field=name)
             return values * scale
-    raise InputError(f"no vertical coordinate column ({axis!r} or 'vertCoord')",
+    raise InputError(f"no vertical coordinate column ({axis!r}, 'vertCoord' or 'alt')",
                      source=source)
 
 
@@ -171,7 +207,8 @@ def rotate_grid_winds(u, v, longitude, projection: dict):
 
 
 def point_columns(dataset_url: str, latitude: float, longitude: float, time: datetime,
-                  source: str = "THREDDS NCSS") -> dict:
+                  source: str = "THREDDS NCSS", variables: dict | None = None,
+                  member: float | None = None) -> dict:
     """Fetch and merge the four isobaric variables at one point and time.
 
     Parameters
@@ -180,6 +217,11 @@ def point_columns(dataset_url: str, latitude: float, longitude: float, time: dat
         NCSS dataset URL (``{thredds}/ncss/grid/grib/NCEP/RAP/CONUS_13km/Best``).
     latitude, longitude : float [rad]
     time : datetime (UTC)
+    variables : dict, optional
+        ``height``/``temperature``/``u``/``v`` -> dataset variable (default :data:`VARIABLES`).
+    member : float, optional
+        Ensemble member (a value of the variables' Ensemble axis): requested with
+        ``ensCoord``; an ``ensMember`` column in the answer is filtered to it.
 
     Returns
     -------
@@ -195,12 +237,18 @@ def point_columns(dataset_url: str, latitude: float, longitude: float, time: dat
     NetworkError
         THREDDS unreachable or its answer malformed.
     """
-    info = net.fetch(source, f"{dataset_url}/dataset.xml",
-                     parse=lambda b: parse_dataset_xml(b, f"{dataset_url}/dataset.xml")).data
-    missing = [v for v in VARIABLES.values() if v not in info.vertical_axis]
+    variables = VARIABLES if variables is None else variables
+    info = dataset_info(dataset_url, source)
+    missing = [v for v in variables.values() if v not in info.vertical_axis]
     if missing:
         raise InputError(f"the dataset has no {', '.join(missing)}", source=dataset_url,
                          field="var")
+    if member is not None:
+        off = [v for v in variables.values()
+               if not any(abs(member - x) < 1e-9 for x in info.ensemble.get(v, ("", ()))[1])]
+        if off:
+            raise InputError(f"ensemble member {member:g} is not on the Ensemble axis of {off[0]}",
+                             source=f"{dataset_url}/dataset.xml", field=off[0])
     if info.time_begin and info.time_end and not info.time_begin <= time <= info.time_end:
         raise InputError(
             f"forecast time {time:%Y-%m-%dT%H:%MZ} is outside the model run(s) available "
@@ -215,30 +263,33 @@ def point_columns(dataset_url: str, latitude: float, longitude: float, time: dat
                              f"(lat {s:g}..{n:g}, lon {w:g}..{e:g})", source=dataset_url,
                              field="site")
     groups: dict[str, list[str]] = {}
-    for key, var in VARIABLES.items():
+    for key, var in variables.items():
         groups.setdefault(info.vertical_axis[var], []).append(key)
     merged: dict[float, dict] = {}
     meta = {}
     for axis, keys in groups.items():
-        params = {"var": [VARIABLES[k] for k in keys], "latitude": f"{lat_d:.4f}",
+        params = {"var": [variables[k] for k in keys], "latitude": f"{lat_d:.4f}",
                   "longitude": f"{lon_d:.4f}", "time": time.strftime("%Y-%m-%dT%H:%M:%SZ"),
                   "accept": "csv"}
+        if member is not None:
+            params["ensCoord"] = f"{member:g}"
         table = net.fetch(source, dataset_url, params=params,
-                          parse=lambda b: _checked_csv(b, dataset_url, keys)).data
+                          parse=lambda b: _checked_csv(b, dataset_url, [variables[k] for k in keys],
+                                                       member)).data
         p = _pressure_column(table, axis, dataset_url)
         for k in keys:
-            for pi, val in zip(p, table[VARIABLES[k]][1]):
+            for pi, val in zip(p, table[variables[k]][1]):
                 merged.setdefault(round(float(pi), 3), {})[k] = val
         if not meta:   # older servers: date, lat, lon; TDS 5: time, latitude, longitude
             when = table.get("date") or table.get("time") or ("", [""])
             meta = {"date": when[1][0] if len(when[1]) else "",
                     "lat": _first(table, ("lat", "latitude"), lat_d),
                     "lon": _first(table, ("lon", "longitude"), lon_d)}
-    levels = sorted(pk for pk, d in merged.items() if len(d) == len(VARIABLES))
+    levels = sorted(pk for pk, d in merged.items() if len(d) == len(variables))
     if len(levels) < 2:
         raise InputError("fewer than two pressure levels with all four variables",
                          source=dataset_url)
-    out = {k: np.array([merged[pk][k] for pk in levels]) for k in VARIABLES}
+    out = {k: np.array([merged[pk][k] for pk in levels]) for k in variables}
     out["pressure"] = np.array(levels, dtype=float)
     lat_r = math.radians(meta["lat"])
     lon_r = math.radians((meta["lon"] + 180.0) % 360.0 - 180.0)
@@ -260,10 +311,28 @@ def _first(table, names, default):
     return default
 
 
-def _checked_csv(content: bytes, source: str, keys) -> dict:
+def dataset_info(dataset_url: str, source: str = "THREDDS NCSS") -> DatasetInfo:
+    """The dataset's ``dataset.xml`` description (fetched through the cache)."""
+    return net.fetch(source, f"{dataset_url}/dataset.xml",
+                     parse=lambda b: parse_dataset_xml(b, f"{dataset_url}/dataset.xml")).data
+
+
+def _checked_csv(content: bytes, source: str, names, member: float | None = None) -> dict:
     table = parse_point_csv(content, source)
-    for k in keys:
-        if VARIABLES[k] not in table:
-            raise InputError(f"column {VARIABLES[k]!r} missing from the response",
-                             source=source, field=VARIABLES[k])
+    for name in names:
+        if name not in table:
+            raise InputError(f"column {name!r} missing from the response", source=source, field=name)
+    if member is not None and "ensMember" in table:
+        return _member_rows(table, member, source)
     return table
+
+
+def _member_rows(table: dict, member: float, source: str) -> dict:
+    """The rows of one member of a TDS 4 answer that lists every member (``ensMember`` column)."""
+    keep = np.isclose(table["ensMember"][1], member)
+    if not keep.any():
+        have = sorted({float(v) for v in table["ensMember"][1]})
+        raise InputError(f"ensemble member {member:g} not in the response's ensMember column (members {have})",
+                         source=source, field="ensMember")
+    return {name: (unit, [v for v, k in zip(vals, keep) if k] if isinstance(vals, list) else vals[keep])
+            for name, (unit, vals) in table.items()}

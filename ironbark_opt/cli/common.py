@@ -167,9 +167,10 @@ def atomic_write_text(path, text: str) -> None:
 
 
 def forecast_option(required: bool = False, help: str = "Fly through a NOAA forecast profile (needs --site "
-                                                               "and --time)."):
-    """The shared ``--forecast rap|gfs`` option (``required`` for commands that need one)."""
-    return click.option("--forecast", type=click.Choice(["rap", "gfs"]), required=required, help=help)
+                                                               "and --time).", choices=("rap", "gfs")):
+    """The shared ``--forecast rap|gfs`` option (``required`` for commands that need one;
+    ``choices`` adds ``gefs`` where ensemble members are flown)."""
+    return click.option("--forecast", type=click.Choice(list(choices)), required=required, help=help)
 
 
 site_option = click.option("--site", help="Launch-site preset for the forecast (see 'ironbark weather sites').")

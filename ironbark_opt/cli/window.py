@@ -1,4 +1,4 @@
-"""``ironbark window ROCKET --forecast rap --site S --from T0 --hours N``: the launch window."""
+"""``ironbark window ROCKET --forecast rap|gfs|gefs --site S --from T0 --hours N``: the launch window."""
 from __future__ import annotations
 
 import click
@@ -9,7 +9,8 @@ from ironbark_opt.cli.common import (PLOT_SUFFIXES, atomic_write, check_output_p
 
 @click.command("window")
 @click.argument("rocket", type=click.Path(dir_okay=False))
-@forecast_option(required=True, help="NOAA forecast flown for every hour.")
+@forecast_option(required=True, choices=("rap", "gfs", "gefs"),
+                 help="NOAA forecast flown for every hour (gefs: every ensemble member of every hour).")
 @site_option
 @click.option("--from", "start", required=True, metavar="ISO", help="First launch hour, ISO 8601 UTC.")
 @click.option("--hours", type=int, default=12, show_default=True, help="Number of forecast hours flown.")
@@ -24,6 +25,10 @@ from ironbark_opt.cli.common import (PLOT_SUFFIXES, atomic_write, check_output_p
 @click.option("--max-rail-wind", type=float, help="No-go above this wind speed at rail exit [m/s].")
 @click.option("--min-margin", type=float, help="No-go below this static margin at rail exit [calibers].")
 @click.option("--min-rail-speed", type=float, help="No-go below this rail-exit speed [m/s].")
+@click.option("--members", type=int, help="GEFS: fly the first N ensemble members (control first; "
+                                          "default all the dataset has).")
+@click.option("--min-go-fraction", type=float, default=1.0, show_default=True,
+              help="GEFS: an hour is go when at least this fraction of its members is go.")
 @click.option("--max-ballast", type=float, help="Most ballast the bay holds [kg].")
 @click.option("--ballast-x", type=float, help="Ballast position, aft of the nose tip [m].")
 @click.option("--plot", "plot_path", type=click.Path(dir_okay=False, writable=True),
@@ -34,8 +39,8 @@ from ironbark_opt.cli.common import (PLOT_SUFFIXES, atomic_write, check_output_p
 @json_option
 @handle_errors
 def window_command(rocket, forecast, site, start, hours, step_hours, target, band, spec_path, samples, seed,
-                   max_rail_wind, min_margin, min_rail_speed, max_ballast, ballast_x, plot_path, card_path,
-                   card_hour, as_json):
+                   max_rail_wind, min_margin, min_rail_speed, members, min_go_fraction, max_ballast, ballast_x,
+                   plot_path, card_path, card_hour, as_json):
     """Fly ROCKET through every forecast hour of a launch window: table, plot, go/no-go."""
     from ironbark_opt.analysis.window import WindowLimits, launch_window, plot_window
     from ironbark_opt.atmosphere.ncss import parse_iso
@@ -58,7 +63,8 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
     except InputError as err:
         raise InputError(err.message, field="--from") from None
     for value, option in ((band, "--band"), (max_rail_wind, "--max-rail-wind"), (min_margin, "--min-margin"),
-                          (min_rail_speed, "--min-rail-speed"), (max_ballast, "--max-ballast")):
+                          (min_rail_speed, "--min-rail-speed"), (max_ballast, "--max-ballast"),
+                          (min_go_fraction, "--min-go-fraction")):
         if value is not None:
             try:
                 number(value, option)
@@ -66,7 +72,8 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
                 raise InputError(err.message, field=option) from None
     if band <= 0:
         raise InputError(f"must be > 0 m, got {band}", field="--band")
-    for value, option in ((hours, "--hours"), (step_hours, "--step-hours"), (samples, "--samples")):
+    for value, option in ((hours, "--hours"), (step_hours, "--step-hours"), (samples, "--samples"),
+                          (1 if members is None else members, "--members")):
         if value < 1:
             raise InputError(f"must be >= 1, got {value}", field=option)
     if target is not None:
@@ -85,7 +92,7 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
     result = launch_window(setup, forecast, where, t0, hours, step_hours=step_hours, target=target, band=band,
                            spec=spec, samples=samples, seed=seed, limits=limits,
                            ballast_options={"mass_max": max_ballast, "ballast_x": ballast_x},
-                           progress=progress)
+                           progress=progress, members=members, min_go_fraction=min_go_fraction)
     if plot_path:
         atomic_write(plot_path, lambda tmp: plot_window(result, tmp))
     out = result.to_dict()

@@ -65,6 +65,10 @@ class FlightCard:
     #: nominal and the robust ballast, their P(in band) on the solver's fresh-sample check and its
     #: standard errors, the paired gain, the objective and the sample counts
     robust: Mapping | None = None
+    #: an ensemble hour of a launch window (``window_ensemble.card_ensemble``): the forecast, the
+    #: member this card flies, and over the members the apogee median and 5-95 %, the 95 % drift,
+    #: the 5 % rail-exit speed, the 95 % wind at rail exit, P(in band), members go / flown
+    ensemble: Mapping | None = None
     #: the Monte Carlo and the nominal ground track (east, north) [m] (for the
     #: page's figures; not in :meth:`to_dict`)
     dispersion: object = field(default=None, repr=False, compare=False)
@@ -94,7 +98,7 @@ class FlightCard:
             rows.append((f"P(+-{self.band_m:.0f} m)", f"{self.probability_in_band:.3f} of the Monte Carlo flights "
                                                       f"within {self.band_m:.1f} m of the target"))
         rows.append(("apogee drift", f"{self.apogee_east_m:.1f} m east, {self.apogee_north_m:.1f} m north"))
-        rows += self._robust_rows()
+        rows += self._robust_rows() + self._ensemble_rows()
         rows += [("RANGE SAFETY", ""), ("rail-exit speed", f"{self.rail_exit_speed_mps:.2f} m/s"),
                  ("stability margin", f"{self.static_margin_rail_exit_cal:.2f} cal at rail exit, "
                                       f"{self.static_margin_min_cal:.2f} cal minimum"),
@@ -131,6 +135,23 @@ class FlightCard:
                                          f"flights, seed {r['check_seed']}, paired)"))
         return rows
 
+    def _ensemble_rows(self) -> list[tuple[str, str]]:
+        e = self.ensemble
+        if e is None:
+            return []
+        rows = [(f"ENSEMBLE ({e['forecast']})", ""),
+                ("this card", f"member {e['member']} (the ballast was solved on it); "
+                              f"{e['members_flown']} members flown"),
+                ("apogee, members", f"median {e['apogee_agl_m']:.1f} m, 5-95 % {e['apogee_p05_agl_m']:.1f} to "
+                                    f"{e['apogee_p95_agl_m']:.1f} m AGL"),
+                ("drift, members", f"95 % {e['apogee_drift_p95_m']:.1f} m (apogee)"),
+                ("rail exit, members", f"speed 5 % {e['rail_exit_speed_p05_mps']:.2f} m/s, wind 95 % "
+                                       f"{e['rail_exit_wind_p95_mps']:.2f} m/s")]
+        if e.get("probability_in_band") is not None:
+            rows.append((f"P(+-{e['band_m']:.0f} m)", f"{e['probability_in_band']:.3f} over the members"))
+        rows.append(("members go", f"{e['members_go']} of {e['members_flown']}"))
+        return rows
+
     def text_lines(self) -> list[str]:
         """:meth:`lines` as the strings placed on the page."""
         return [f"{label:<19s}{text}".rstrip() if text else label for label, text in self.lines()]
@@ -140,6 +161,7 @@ class FlightCard:
         out = {f.name: getattr(self, f.name) for f in fields(self) if f.compare}   # not the figures' data
         out["landing_ellipse"] = None if self.landing_ellipse is None else dict(self.landing_ellipse)
         out["robust"] = None if self.robust is None else dict(self.robust)
+        out["ensemble"] = None if self.ensemble is None else dict(self.ensemble)
         out["lines"] = self.text_lines()
         return out
 
@@ -239,6 +261,10 @@ def _map(card, ax):
         ax.set_title(f"{card.rocket}: nominal flight\n{_short(card.atmosphere)}", fontsize=10)
     if card.track is not None:
         ax.plot(*card.track, color="0.45", lw=1.0, label="ground track (nominal)")
+    ens = card.ensemble or {}
+    if "landing_east_m" in ens:
+        ax.plot(ens["landing_east_m"], ens["landing_north_m"], "x", color="0.3", ms=5,
+                label=f"{ens['forecast']} members' landings")
     ax.plot([card.apogee_east_m], [card.apogee_north_m], "D", color="C4", ms=6, label="nominal apogee")
     if card.landing_east_m is not None:
         ax.plot([card.landing_east_m], [card.landing_north_m], "X", color="C3", ms=8, label="nominal landing")

@@ -406,6 +406,10 @@ case("window-forecast-unknown", "window {C} --forecast ecmwf --site spaceport --
 case("window-band-zero", WIN + " --band 0", ["--band"])
 case("window-plot-suffix", WIN + " --plot {T}/w.txt", ["--plot"], outputs=["w.txt"])
 case("window-spec-missing", WIN + " --spec {T}/nope.toml", ["nope.toml", "not found"])
+GEFS = "window {C} --forecast gefs --site spaceport --from 2025-06-20T15:00Z"
+case("window-gefs-members-zero", GEFS + " --members 0", ["--members"])
+case("window-gefs-go-fraction", GEFS + " --min-go-fraction 1.5", ["--min-go-fraction"])
+case("window-rap-members", WIN + " --members 3", ["--members", "deterministic"])
 MC = "montecarlo {C} --spec {CD}/dispersions.toml --no-progress"
 case("mc-samples-huge", MC + " --samples 1000000000000", ["--samples"])
 case("mc-samples-zero", MC + " --samples 0", ["--samples"])
@@ -495,6 +499,8 @@ case("net-forecast-closed-port", ball_c + " --forecast rap --site spaceport --ti
      ["cache"], status=3, net="closed")
 case("net-window-closed-port", WIN + " --hours 2 --plot {T}/w.png", ["cache"], status=3, net="closed",
      outputs=["w.png"])
+case("net-window-gefs-closed-port", GEFS + " --members 3 --plot {T}/w.png", ["gefs", "dataset.xml"], status=3,
+     net="closed", outputs=["w.png"])
 
 
 # --------------------------------------------------------------------------- helpers

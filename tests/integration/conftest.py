@@ -31,7 +31,8 @@ class Route:
     truncate: bool = False        # announce the full length, send half, close
     fail_first: int = 0           # answer 500 to the first N requests
     calls: int = 0
-    #: (query parameter, {value: body}): the body chosen by one query value (e.g. an NCSS ``time``)
+    #: (query parameter, {value: body}): the body chosen by one query value (e.g. an NCSS ``time``),
+    #: or ((parameters, ...), {(values, ...): body}) by several (``time`` and ``ensCoord``)
     by_query: tuple | None = None
 
 
@@ -71,7 +72,9 @@ class Loopback:
                 data, status = route.body, route.status
                 if route.by_query is not None:
                     name, bodies = route.by_query
-                    value = parse_qs(parts.query).get(name, [None])[0]
+                    query = parse_qs(parts.query)
+                    value = (tuple(query.get(n, [None])[0] for n in name) if isinstance(name, tuple)
+                             else query.get(name, [None])[0])
                     if value not in bodies:
                         return self._send(400, f"no recorded response for {name}={value}\n".encode(),
                                           "text/plain")
@@ -188,3 +191,17 @@ def tc_server(loopback, net_env, monkeypatch):
     """The loopback server standing in for ThrustCurve.org (API under ``/api/v1``)."""
     monkeypatch.setenv("IRONBARK_THRUSTCURVE_URL", loopback.url + THRUSTCURVE_API)
     return loopback
+
+
+def scaled_point_csv(path: Path, stamp: str, factor: float, wind_columns: tuple[int, int]) -> bytes:
+    """An NCSS point CSV (header + rows) with its first column (time) set to ``stamp`` and the two
+    wind columns multiplied by ``factor``: one forecast hour built from one file."""
+    lines = path.read_text().splitlines()
+    out = [lines[0]]
+    i, j = wind_columns
+    for line in lines[1:]:
+        cells = line.split(",")
+        cells[0] = stamp
+        cells[i], cells[j] = (f"{float(c) * factor:.6f}" for c in (cells[i], cells[j]))
+        out.append(",".join(cells))
+    return ("\n".join(out) + "\n").encode()

@@ -32,6 +32,25 @@ def test_dataset_descriptions_axis_names_differ():
         parse_dataset_xml(b"<gridDataset><axis")
 
 
+def test_ensemble_axis_of_the_built_gefs_description():
+    """The Ensemble axis (regular: values from start + i * resolution; irregular: listed), and
+    none in the recorded deterministic descriptions."""
+    text = (W / "ncss_GEFS_members_built_dataset.xml").read_text()
+    gefs = parse_dataset_xml(text.encode())
+    assert gefs.vertical_axis["Temperature_isobaric_ens"] == "isobaric"
+    assert gefs.ensemble["u-component_of_wind_isobaric_ens"] == ("ens", tuple(float(m) for m in range(21)))
+    assert gefs.run_time == datetime(2024, 12, 11, 12, tzinfo=timezone.utc)
+    listed = text.replace('<values spacing="regularPoint" npts="21" start="0.0" end="20.0" resolution="1.0" />',
+                          '<values spacing="irregularPoint" npts="4" start="0.0" end="7.0">0.0 1.0 2.0 7.0</values>')
+    assert parse_dataset_xml(listed.encode()).ensemble["Temperature_isobaric_ens"][1] == (0.0, 1.0, 2.0, 7.0)
+    broken = text.replace('npts="21" start="0.0" end="20.0" resolution="1.0"', 'npts="21" start="0.0"')
+    with pytest.raises(InputError, match="axis 'ens'.*21 points with resolution 0") as err:
+        parse_dataset_xml(broken.encode(), "gefs.xml")
+    assert err.value.field == "ens" and err.value.source == "gefs.xml"
+    gfs = parse_dataset_xml((W / "ncss_GFS_Global_0p5deg_20170903_1200_dataset.xml").read_bytes())
+    assert gfs.ensemble == {}
+
+
 def test_recorded_point_csv_columns_by_name():
     table = parse_point_csv((W / "ncss_gfs0p5_point_csv_2015-06-12T15Z_40N_105W.csv").read_bytes())
     unit, p = table["vertCoord"]

@@ -21,6 +21,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from conftest import scaled_point_csv
 from ironbark_opt.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,16 +36,8 @@ MAX_RAIL_WIND = 8.0                                  # [m/s]: hours 0..6 go (3.0
 
 
 def _hour_csv(k: int) -> bytes:
-    lines = (W / "ncss_rap_point_csv_constructed.csv").read_text().splitlines()
-    stamp = (T0 + timedelta(hours=k)).strftime("%Y-%m-%dT%H:%M:%SZ")
-    f = 0.25 + 0.0625 * k
-    out = [lines[0]]
-    for line in lines[1:]:
-        cells = line.split(",")
-        cells[0] = stamp
-        cells[6], cells[7] = (f"{float(c) * f:.6f}" for c in cells[6:8])
-        out.append(",".join(cells))
-    return ("\n".join(out) + "\n").encode()
+    return scaled_point_csv(W / "ncss_rap_point_csv_constructed.csv",
+                            (T0 + timedelta(hours=k)).strftime("%Y-%m-%dT%H:%M:%SZ"), 0.25 + 0.0625 * k, (6, 7))
 
 
 @pytest.fixture

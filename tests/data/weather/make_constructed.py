@@ -39,18 +39,24 @@ HERE = Path(__file__).resolve().parent
 G0, R = 9.80665, 287.05287
 
 
-def gfs_grib():
-    from eccodes import (codes_get_message, codes_grib_new_from_samples, codes_release,
-                         codes_set, codes_set_values)
+def gfs_column(dT=0.0):
+    """The recorded GFS temperature column at 40 N 105 W (plus ``dT`` [K]) from 1000 hPa up, and
+    its hypsometric geopotential heights (dry air, 1000 hPa at 120 gpm): ``p [Pa], T [K], H [gpm]``."""
     rows = list(csv.reader(open(HERE / "ncss_gfs0p5_point_csv_2015-06-12T15Z_40N_105W.csv")))
     p = np.array([float(r[3]) for r in rows[1:]])           # Pa, increasing
-    T = np.array([float(r[4]) for r in rows[1:]])
+    T = np.array([float(r[4]) for r in rows[1:]]) + dT
     order = np.argsort(-p)                                    # from 1000 hPa upwards
     p, T = p[order], T[order]
     H = [120.0]
     for i in range(1, p.size):
         H.append(H[-1] + R * 0.5 * (T[i] + T[i - 1]) / G0 * math.log(p[i - 1] / p[i]))
-    H = np.array(H)
+    return p, T, np.array(H)
+
+
+def gfs_grib():
+    from eccodes import (codes_get_message, codes_grib_new_from_samples, codes_release,
+                         codes_set, codes_set_values)
+    p, T, H = gfs_column()
     u, v = 2.0 + 0.001 * H, -1.0 - 0.0005 * H
     fields = {"gh": H, "t": T, "r": np.full_like(T, 50.0), "u": u, "v": v}
     names = {"gh": "HGT", "t": "TMP", "r": "RH", "u": "UGRD", "v": "VGRD"}
