@@ -174,6 +174,7 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
     P = draw(int(samples), p_nom, np.random.default_rng(seed))
     limits = [(i, float(v)) for i, v in enumerate((min_rail_speed, min_margin)) if v is not None]
     rows = [i for i, _ in limits]
+    t_saa = time.perf_counter()
     # the nominal parameters' flight (the user's limits) rides along as one more column
     apogees = SampleApogees(model, np.hstack([P, p_nom[:, None]]) if limits else P, free_position)
     w0 = np.array([nv["ballast_kg"]] + ([nv["ballast_x_m"]] if free_position else []))
@@ -188,7 +189,6 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
 
     lower = np.array([0.0] + ([x_bay[0]] if free_position else []))
     upper = np.array([m_max] + ([x_bay[1]] if free_position else []))
-    t_saa = time.perf_counter()
     best, _, ipopt_iterations = minimise(evaluate, terms, w0, lower, upper, [v for _, v in limits],
                                          xtol=XTOL, ipopt_options=ipopt_options)
     w_opt = w_saa = best.w

@@ -77,3 +77,16 @@ def test_two_variables_and_an_active_limit():
     assert best.f == pytest.approx(ref.fun, abs=1e-7)
     np.testing.assert_allclose(best.w, ref.x, atol=1e-3)
     assert limit(best.w)[0][0] == pytest.approx(bound, abs=1e-6)        # active: on the limit
+
+
+@pytest.mark.parametrize("objective", ["in_band", "expected_abs_miss"])
+def test_symbolic_terms_equal_the_numeric_ones(objective):
+    """The model problem's CasADi terms (erf) and the exact evaluations' NumPy terms (ndtr) are
+    one function: equal to rounding, so the ratio test compares like with like."""
+    import casadi as ca
+
+    a = 3000 + 80 * np.random.default_rng(1).standard_normal(50)
+    x = ca.SX.sym("a", a.size)
+    f = ca.Function("terms", [x], [symbolic_terms(x, 3020.0, objective, 50.0, 22.0)])
+    np.testing.assert_allclose(np.array(f(a)).ravel(), smoothed_terms(a, 3020.0, objective, 50.0, 22.0)[0],
+                               rtol=1e-12, atol=1e-15)
