@@ -64,7 +64,7 @@ def saa_design_study(a_0, slope, P, p_nom, spec, masses, m0, probs, target, band
     """The SAA pick from N independent draws vs an N-point Latin hypercube, on a surrogate of the
     flights (the linear fit on the dispersed parameters plus a residual and a slope resampled from
     the flown samples), judged on the flown samples' P(in band) curve."""
-    from ironbark_opt.optimise.robust import silverman_width, smoothed_objective
+    from ironbark_opt.optimise.robust_objective import silverman_width, smoothed_objective
 
     names, b, c, resid = linear_fit(a_0, P, spec)
     rows = [params.index(n) for n in names]
@@ -150,7 +150,7 @@ def sweep(model, P, m0, x0, delta, target, band, label, cache=None):
 def saa_noise(a_0, slope, curv, masses, m0, probs, target, band, label, repeats=300):
     """What the robust solver's SAA (N samples, Silverman kernel, in-band objective) picks when its
     N samples are drawn from these ones, judged by P(in band) on all of them."""
-    from ironbark_opt.optimise.robust import silverman_width, smoothed_objective
+    from ironbark_opt.optimise.robust_objective import silverman_width, smoothed_objective
 
     rng = np.random.default_rng(0)
     dms = masses - m0

@@ -1,9 +1,10 @@
 """Robust ballast (ironbark_opt.optimise.robust): gradients, the SAA solve and its check.
 
 Fast tests (default run, CasADi VM):
-- the per-sample apogees and their exact (implicit-function) gradients against
-  the numeric trajectory of ``run_batch`` and central finite differences of it
-  (an independent method: a different coast grid and no derivatives);
+- the per-sample apogees and their exact (forward-mode) gradients against
+  ``run_batch`` (the same ascent Function: equal to the bit) and central finite
+  differences of it (no derivatives); a sample forced onto the phase
+  formulation (events by Newton, implicit-function gradients) against both;
 - the smoothed objective's gradient against finite differences, and its
   limit (kernel width -> 0) against the plain sample mean;
 - a small solve (8 samples): the robust ballast does not score worse than
@@ -41,7 +42,9 @@ from ironbark_opt import params
 from ironbark_opt.analysis.distributions import load_spec
 from ironbark_opt.analysis.montecarlo import montecarlo
 from ironbark_opt.flight import flight_model
-from ironbark_opt.optimise.robust import SampleApogees, gain_t, smoothed_objective, solve_robust_ballast
+from ironbark_opt.optimise.robust import solve_robust_ballast
+from ironbark_opt.optimise.robust_objective import gain_t, smoothed_objective
+from ironbark_opt.optimise.sample_apogees import SampleApogees
 from ironbark_opt.vehicle import load_setup
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -63,22 +66,50 @@ def test_sample_apogees_and_gradients_match_the_numeric_trajectory(calisto):
     p0 = calisto.nominal_parameters(ballast_mass=1.5)
     P = spec.sample(3, p0, np.random.default_rng(7))
     run = model.run_batch(P)
-    fn = SampleApogees(model, P, run["t_rail"], run["t_apogee"], free_position=False)
+    fn = SampleApogees(model, P, free_position=False)
     z, dz = fn([1.5])
-    # same trajectory functions, coast grid ending at T instead of the run's horizon: < 1 m
-    print("apogee (events formulation - run_batch) [m]:", z - run["apogee_agl"])
-    assert np.max(np.abs(z - run["apogee_agl"])) < 1.0
-    h = 0.05        # [kg]; central differences of the numeric run (truncation ~ h^2 a''' / 6, negligible)
+    rail, drail = fn.rail([1.5])
+    # the model's own ascent Function: the Monte Carlo's apogees and rail-exit speeds to the bit
+    np.testing.assert_array_equal(z, run["apogee_agl"])
+    np.testing.assert_array_equal(rail[0], run["rail_exit_speed"])
+    h = 0.01        # [kg]; central differences of the numeric run (truncation ~ h^2 a'''/6, negligible)
     up, dn = P.copy(), P.copy()
     up[i_m], dn[i_m] = 1.5 + h, 1.5 - h
-    fd = (model.run_batch(up)["apogee_agl"] - model.run_batch(dn)["apogee_agl"]) / (2 * h)
-    print("d apogee / d ballast [m/kg]: exact", dz[0], "finite differences", fd)
-    np.testing.assert_allclose(dz[0], fd, rtol=0.01)
+    run_up, run_dn = model.run_batch(up), model.run_batch(dn)
+    fd = (run_up["apogee_agl"] - run_dn["apogee_agl"]) / (2 * h)
+    print("d apogee / d ballast [m/kg]: forward mode", dz[0], "finite differences", fd)
+    np.testing.assert_allclose(dz[0], fd, rtol=1e-4)
     assert np.all(dz[0] < -150)                  # ~ -190 m/kg on Calisto (sensitivity analysis agrees)
-    # the predictor-corrector tracks the events: a second point converges to the same answer as a cold start
-    z2, _ = fn([1.6])
-    cold = SampleApogees(model, P, run["t_rail"], run["t_apogee"], free_position=False)
-    np.testing.assert_allclose(z2, cold([1.6])[0], atol=1e-6)
+    fd_rail = (run_up["rail_exit_speed"] - run_dn["rail_exit_speed"]) / (2 * h)
+    print("d rail-exit speed / d ballast [m/s/kg]:", drail[0, 0], fd_rail)
+    np.testing.assert_allclose(drail[0, 0], fd_rail, rtol=1e-4)
+
+
+def test_samples_outside_the_ascent_function_fly_the_phase_formulation(calisto, monkeypatch):
+    """A sample the ascent Function does not apply to (forced here) takes the phase formulation
+    (events by Newton, implicit-function gradients): an independent discretisation of the coast,
+    so its apogee agrees with run_batch within 1 m and its gradient with finite differences."""
+    from ironbark_opt.dynamics import ascent
+
+    model = flight_model(calisto)
+    i_m = params.index("ballast_mass")
+    P = load_spec(CALISTO_SPEC).sample(3, calisto.nominal_parameters(ballast_mass=1.5), np.random.default_rng(7))
+    applies = ascent.applies
+    monkeypatch.setattr(ascent, "applies", lambda ev: applies(ev) & (np.arange(3) != 1))
+    fn = SampleApogees(model, P, free_position=False)
+    z, dz = fn([1.5])
+    monkeypatch.setattr(ascent, "applies", applies)
+    direct, ddirect = SampleApogees(model, P, free_position=False)([1.5])
+    run = model.run_batch(P)
+    print("phase formulation - run_batch [m]:", z - run["apogee_agl"], "gradients", dz[0], ddirect[0])
+    assert set(fn._fallback) == {(1,)}
+    np.testing.assert_array_equal(z[[0, 2]], run["apogee_agl"][[0, 2]])
+    assert abs(z[1] - run["apogee_agl"][1]) < 1.0
+    np.testing.assert_allclose(dz[0], ddirect[0], rtol=2e-3)
+    up, dn = P[:, 1:2].copy(), P[:, 1:2].copy()
+    up[i_m], dn[i_m] = 1.55, 1.45
+    fd = (model.run_batch(up)["apogee_agl"] - model.run_batch(dn)["apogee_agl"]) / 0.1
+    np.testing.assert_allclose(dz[0, 1], fd, rtol=2e-3)
 
 
 @pytest.mark.parametrize("objective", ["in_band", "expected_abs_miss"])
