@@ -189,7 +189,9 @@ class AeroModel:
         t = self.table
         if t is not None and t.has("CA"):
             name = "CA_power_on" if (power_on and t.has("CA_power_on")) else "CA"
-            merged = self._merged_drag() if m.is_symbolic(mach) and mach.numel() == 1 else ()
+            # from the merged spline where the step reads the lift sums too (a symbolic angle
+            # of attack); the rail phase (alpha = 0, no lift sums) keeps the drag curve's own
+            merged = self._merged_drag() if m.is_symbolic(mach) and m.is_symbolic(alpha) and mach.numel() == 1 else ()
             if name in merged:
                 ca_coef = ca_coef + self._mach_tables(mach)[5 + merged.index(name)]
             else:

@@ -86,14 +86,16 @@ def test_calisto_aero_from_the_merged_spline_equals_the_table_splines():
     aero = setup.aero
     assert aero._merged_drag() == ("CA", "CA_power_on")
     m = ca.SX.sym("m")
-    sym = ca.Function("aero", [m], [ca.vertcat(aero.axial(m, 0.0, 1e7, False), aero.axial(m, 0.0, 1e7, True),
-                                               *aero._sums(m))])
+    rows = []
+    for alpha in (ca.SX(0.0), 0.0):     # symbolic angle: the merged spline; a number (rail): the table's
+        rows += [aero.axial(m, alpha, 1e7, False), aero.axial(m, alpha, 1e7, True)]
+    sym = ca.Function("aero", [m], [ca.vertcat(*rows, *aero._sums(m))])
     mach = np.linspace(0.0, 3.0, 3001)
     got = np.array(sym.map(mach.size)(mach[None, :]))
     with warnings.catch_warnings():          # drag curves end at Mach 2: clamped (and warned)
         warnings.simplefilter("ignore")
-        want = np.vstack([aero.axial(mach, 0.0, 1e7, False), aero.axial(mach, 0.0, 1e7, True),
-                          *aero._sums(mach)])
+        drag = [aero.axial(mach, 0.0, 1e7, False), aero.axial(mach, 0.0, 1e7, True)]
+        want = np.vstack(drag + drag + list(aero._sums(mach)))
     err = np.max(np.abs(got - want) / np.abs(want).max(axis=1, keepdims=True))
     print(f"CA, CA_power_on and 5 lift sums: max relative difference {err:.2e} (tolerance 1e-12)")
     assert err < 1e-12
