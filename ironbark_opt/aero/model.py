@@ -173,11 +173,14 @@ class AeroModel:
         table)."""
         cached = self.__dict__.get("_mach_fn")
         if cached is None:
-            from ironbark_opt.aero.mach_splines import merged_spline
             names = self._merged_drag()
-            splines = [self.table._spline(n) for n in names]
-            cached = merged_spline("mach_tables", [LIFT_MACH_GRID] + [sp.axes[0] for sp in splines],
-                                   [self._sums_function()] + [sp.casadi_interpolant() for sp in splines])
+            if not names:                  # nothing to share a call with: the lift sums' own spline
+                cached = self._sums_function(), float(LIFT_MACH_GRID[0]), float(LIFT_MACH_GRID[-1])
+            else:
+                from ironbark_opt.aero.mach_splines import merged_spline
+                splines = [self.table._spline(n) for n in names]
+                cached = merged_spline("mach_tables", [LIFT_MACH_GRID] + [sp.axes[0] for sp in splines],
+                                       [self._sums_function()] + [sp.casadi_interpolant() for sp in splines])
             object.__setattr__(self, "_mach_fn", cached)
         fn, lo, hi = cached
         return fn(m.clip(mach, lo, hi))
