@@ -16,10 +16,11 @@ as the constant it is clamped to.  So one B-spline on the union knots, with
 one output per curve, equals every curve (with its clamping) to rounding: one
 knot search and one basis evaluation per stage serve all of them.
 
-Its coefficients are fitted (least squares, 4 points inside every knot
-interval, where the fit is exact because each curve lies in the spline space)
-to the curves' own CasADi B-splines, so it reproduces the splines the flight
-used before (measured ~1e-15 relative, ``tests/unit/test_mach_splines.py``).
+Its coefficients are fitted (least squares on 4 points inside every knot
+interval, exact because each curve lies in the spline space; banded normal
+equations with one step of iterative refinement) to the curves' own CasADi
+B-splines, so it reproduces the splines the flight used before (measured
+~1e-15 relative, ``tests/unit/test_mach_splines.py``).
 """
 from __future__ import annotations
 
@@ -39,7 +40,8 @@ def spline_knots(grid: np.ndarray, degree: int = DEGREE) -> np.ndarray:
     return np.r_[[g[0]] * (degree + 1), g[2:-2], [g[-1]] * (degree + 1)]
 
 
-def merged_spline(name: str, grids: Sequence[np.ndarray], curves: Sequence[ca.Function]) -> tuple[ca.Function, float, float]:
+def merged_spline(name: str, grids: Sequence[np.ndarray],
+                  curves: Sequence[ca.Function]) -> tuple[ca.Function, float, float]:
     """One B-spline Function ``mach -> (outputs of every curve)`` on ``[lo, hi]``, the
     union of the grids, and ``(lo, hi)`` (callers clamp to them).
 
