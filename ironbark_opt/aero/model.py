@@ -109,6 +109,7 @@ class AeroModel:
         a pickle (the flight-model cache key) depends on the data, not on past use."""
         state = dict(self.__dict__)
         state.pop("_sums_fn", None)
+        state.pop("_mach_fn", None)
         return state
 
     def _sums_exact(self, mach):
@@ -136,20 +137,53 @@ class AeroModel:
         Tabulation error: < 1e-4 of each sum's range, largest at the ends of the
         transonic blends (M = 0.9, 1.5) where the exact curves are only C1.
         """
-        fn = self.__dict__.get("_sums_fn")
-        if fn is None:
-            values = np.vstack(self._sums_exact(LIFT_MACH_GRID))          # (5, n)
-            fn = ca.interpolant("lift_sums", "bspline", [LIFT_MACH_GRID], values.ravel(order="F"))
-            object.__setattr__(self, "_sums_fn", fn)
-        mc = m.clip(mach, LIFT_MACH_GRID[0], LIFT_MACH_GRID[-1])
         if m.is_symbolic(mach):
-            out = fn(mc)
+            out = self._mach_tables(mach)
             return tuple(out[i] for i in range(5))
+        mc = m.clip(mach, LIFT_MACH_GRID[0], LIFT_MACH_GRID[-1])
+        fn = self._sums_function()
         flat = np.atleast_1d(np.asarray(mc, dtype=float)).ravel()
         out = np.array(fn(flat[None, :]))                                   # (5, n), one call
         if np.ndim(mach) == 0:
             return tuple(float(out[i, 0]) for i in range(5))
         return tuple(out[i].reshape(np.shape(mach)) for i in range(5))
+
+    def _sums_function(self) -> ca.Function:
+        """The cubic B-spline ``mach -> (S0, S1, S2, Cl_cant, Clp)`` over ``LIFT_MACH_GRID``."""
+        fn = self.__dict__.get("_sums_fn")
+        if fn is None:
+            values = np.vstack(self._sums_exact(LIFT_MACH_GRID))          # (5, n)
+            fn = ca.interpolant("lift_sums", "bspline", [LIFT_MACH_GRID], values.ravel(order="F"))
+            object.__setattr__(self, "_sums_fn", fn)
+        return fn
+
+    def _merged_drag(self) -> tuple[str, ...]:
+        """The table's axial coefficients that are cubic splines of Mach alone (drag curves):
+        evaluated in one B-spline with the lift sums (:meth:`_mach_tables`)."""
+        t = self.table
+        if t is None or getattr(t, "reynolds", None) is not None:
+            return ()
+        return tuple(n for n in ("CA", "CA_power_on") if t.has(n) and t._spline(n).mach_only_cubic())
+
+    def _mach_tables(self, mach):
+        """Symbolic ``mach`` -> (S0, S1, S2, Cl_cant, Clp, *the :meth:`_merged_drag`
+        coefficients), each clamped to its own grid, from one B-spline call
+        (:func:`~ironbark_opt.aero.mach_splines.merged_spline`: the same splines to
+        rounding; one knot search and basis evaluation per RK4 stage instead of one per
+        table)."""
+        cached = self.__dict__.get("_mach_fn")
+        if cached is None:
+            names = self._merged_drag()
+            if not names:                  # nothing to share a call with: the lift sums' own spline
+                cached = self._sums_function(), float(LIFT_MACH_GRID[0]), float(LIFT_MACH_GRID[-1])
+            else:
+                from ironbark_opt.aero.mach_splines import merged_spline
+                splines = [self.table._spline(n) for n in names]
+                cached = merged_spline("mach_tables", [LIFT_MACH_GRID] + [sp.axes[0] for sp in splines],
+                                       [self._sums_function()] + [sp.casadi_interpolant() for sp in splines])
+            object.__setattr__(self, "_mach_fn", cached)
+        fn, lo, hi = cached
+        return fn(m.clip(mach, lo, hi))
 
     # -- axial ------------------------------------------------------------------
     def axial(self, mach, alpha, reynolds_per_m, power_on: bool):
@@ -158,7 +192,13 @@ class AeroModel:
         t = self.table
         if t is not None and t.has("CA"):
             name = "CA_power_on" if (power_on and t.has("CA_power_on")) else "CA"
-            ca_coef = ca_coef + t.symbolic(name, mach, alpha)
+            # from the merged spline where the step reads the lift sums too (a symbolic angle
+            # of attack); the rail phase (alpha = 0, no lift sums) keeps the drag curve's own
+            merged = self._merged_drag() if m.is_symbolic(mach) and m.is_symbolic(alpha) and mach.numel() == 1 else ()
+            if name in merged:
+                ca_coef = ca_coef + self._mach_tables(mach)[5 + merged.index(name)]
+            else:
+                ca_coef = ca_coef + t.symbolic(name, mach, alpha)
         if self.friction is not None and "friction" not in self.includes:
             ca_coef = ca_coef + self.friction.CA(mach, reynolds_per_m)
         if self.base is not None and "base" not in self.includes:

@@ -158,6 +158,10 @@ class GridSpline:
                                           vals, {"degree": list(self._degrees)})
         return self._casadi
 
+    def mach_only_cubic(self) -> bool:
+        """True when the spline varies along its first axis (Mach) alone, cubic there."""
+        return self._active == (0,) and self._degrees == (3,)
+
     def symbolic(self, *coords):
         """Symbolic-safe evaluation: CasADi input -> clamped CasADi B-spline
         expression; numeric input -> `evaluate` (the same spline, with warnings).
