@@ -35,7 +35,7 @@ import numpy as np
 
 from . import kernels
 
-__all__ = ["panel_frames", "source_potential"]
+__all__ = ["panel_frames", "source_potential", "source_potential_pair"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -117,6 +117,34 @@ def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
     ndarray (m, n)
         phi = -1/(2 pi) Integral_{panel and upstream Mach cone} dA / R.
     """
+    m, n = len(points), len(flat)
+    out = np.zeros((m, n))
+    prep = _prepare(flat, normal)
+    if kernels.use_compiled(backend):
+        kernels.supersonic_source(np.ascontiguousarray(points, float), *prep, out)
+        return out
+    cen, rho, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all, eq_all, nup_all, \
+        nuq_all, a_all = prep
+    for a0 in range(0, m, chunk):
+        P = points[a0:a0 + chunk]
+        d = P[:, None, :] - cen[None, :, :]
+        # a panel whose bounding sphere is outside the upstream Mach cone of P
+        # (45 deg in scaled coordinates) has no influence
+        dist = (np.hypot(d[..., 1], d[..., 2]) - d[..., 0]) / np.sqrt(2.0)
+        I, J = np.nonzero(dist < rho[None, :] * (1 + 1e-9) + 1e-12)
+        for b0 in range(0, len(I), 20000):
+            ii, jj = I[b0:b0 + 20000], J[b0:b0 + 20000]
+            out[a0 + ii, jj] = _pair_potential(P[ii], jj, q0, normal, e1, e2, g1, sg, e1x_nx,
+                                               uk, tk, L, okL, ep_all, eq_all, nup_all,
+                                               nuq_all, a_all)
+    return out
+
+
+def _prepare(flat: np.ndarray, normal: np.ndarray) -> tuple:
+    """Per-panel constants of the source kernel (C-contiguous, in the compiled
+    kernels' argument order): centroid, bounding radius, first corner, normal,
+    frame e1, e2, g1, sqrt(g1), e1_X n_X, corner coordinates (u, t), edge lengths
+    and their use, edge directions, edge normals and the quadratic's a."""
     e1, e2, g1 = panel_frames(flat, normal)
     sg = np.sqrt(np.maximum(g1, 1e-12))
     q0 = flat[:, 0, :]
@@ -133,8 +161,6 @@ def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
     L = np.hypot(du, dt)
     okL = L > 1e-14 * (1.0 + L.max())
     Ls = np.where(okL, L, 1.0)
-    m, n = len(points), len(flat)
-    out = np.zeros((m, n))
     e1x_nx = e1[:, 0] * normal[:, 0]
     cen = flat.mean(axis=1)
     rho = np.linalg.norm(flat - cen[:, None, :], axis=-1).max(axis=1)
@@ -143,25 +169,53 @@ def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
     nup_all = -dt / Ls
     nuq_all = du / Ls
     a_all = ep_all**2 - eq_all**2
+    c = np.ascontiguousarray
+    return (c(cen), c(rho), c(q0), c(normal, float), c(e1), c(e2), c(g1), c(sg), c(e1x_nx), c(uk),
+            c(tk), c(L), c(okL), c(ep_all), c(eq_all), c(nup_all), c(nuq_all), c(a_all))
+
+
+def source_potential_pair(p0: np.ndarray, p1: np.ndarray, flat: np.ndarray, normal: np.ndarray,
+                          sides=None, mirror: bool = False, rows=None, backend: str = "auto"):
+    """The supersonic solver's two potentials in one pass (numeric-only).
+
+    ``phi0`` at ``p0`` and ``phi1`` at ``p1`` (m, 3), each :func:`source_potential`
+    with the fin-separated pairs set to 0 (``sides`` = (recv, src_fin, src_side) of
+    :func:`panair.solver.supersonic._fin_sides`, or None) and, with ``mirror``, plus
+    :func:`source_potential` at the mirror image (x, -y, z) of the points.
+
+    Rows are computed in the order ``rows`` (default 0 .. m-1); the pass stops at the
+    first row with a non-finite value.
+
+    Returns
+    -------
+    phi0, phi1 : ndarray (m, n)
+    bad_row : int
+        The first row (in ``rows`` order) with a non-finite value (the rows after it
+        are not computed), or -1.
+    """
+    m, n = len(p0), len(flat)
+    if sides is None:
+        sides = (np.zeros((0, m)), -np.ones(n, np.int64), np.zeros(n))
+    recv, src_fin, src_side = sides
+    rows = np.arange(m) if rows is None else np.asarray(rows, np.int64)
     if kernels.use_compiled(backend):
-        c = np.ascontiguousarray
-        kernels.supersonic_source(c(points, float), c(cen), c(rho), c(q0), c(normal, float), c(e1),
-                                  c(e2), c(g1), c(sg), c(e1x_nx), c(uk), c(tk), c(L), c(okL),
-                                  c(ep_all), c(eq_all), c(nup_all), c(nuq_all), c(a_all), out)
-        return out
-    for a0 in range(0, m, chunk):
-        P = points[a0:a0 + chunk]
-        d = P[:, None, :] - cen[None, :, :]
-        # a panel whose bounding sphere is outside the upstream Mach cone of P
-        # (45 deg in scaled coordinates) has no influence
-        dist = (np.hypot(d[..., 1], d[..., 2]) - d[..., 0]) / np.sqrt(2.0)
-        I, J = np.nonzero(dist < rho[None, :] * (1 + 1e-9) + 1e-12)
-        for b0 in range(0, len(I), 20000):
-            ii, jj = I[b0:b0 + 20000], J[b0:b0 + 20000]
-            out[a0 + ii, jj] = _pair_potential(P[ii], jj, q0, normal, e1, e2, g1, sg, e1x_nx,
-                                               uk, tk, L, okL, ep_all, eq_all, nup_all,
-                                               nuq_all, a_all)
-    return out
+        phi0, phi1 = np.empty((m, n)), np.empty((m, n))
+        bad = kernels.supersonic_source_pair(
+            np.ascontiguousarray(p0, float), np.ascontiguousarray(p1, float), bool(mirror), rows,
+            np.ascontiguousarray(recv, float), np.ascontiguousarray(src_fin, np.int64),
+            np.ascontiguousarray(src_side, float), *_prepare(flat, normal), phi0, phi1)
+        return phi0, phi1, int(bad)
+    shadow = ((src_fin[None, :] >= 0)
+              & (recv[np.maximum(src_fin, 0)].T * src_side[None, :] < 0)) if len(recv) else False
+    out = []
+    for pts in (p0, p1):
+        val = source_potential(pts, flat, normal, backend=backend)
+        val[shadow] = 0.0
+        if mirror:
+            val += source_potential(pts * np.array([1.0, -1.0, 1.0]), flat, normal, backend=backend)
+        out.append(val)
+    bad = np.nonzero(~np.all(np.isfinite(out[0]) & np.isfinite(out[1]), axis=1)[rows])[0]
+    return out[0], out[1], int(rows[bad[0]]) if len(bad) else -1
 
 
 def _pair_potential(P, jj, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all,
