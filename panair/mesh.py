@@ -110,7 +110,7 @@ class FinGeometry:
         blunt edge (its panels carry no axial force).
     blunt_trailing_edge : bool
         Set by :meth:`sharpened`: the trailing-edge bevel closes a blunt edge
-        (its panels carry no force, as the subsonic closure wedge).
+        (its panels carry no axial force, as the leading edge's wedge).
     """
 
     count: int
@@ -185,7 +185,7 @@ class FinGeometry:
     def sharpened(self, wedge: float) -> "FinGeometry":
         """A blunt (square, rounded) leading edge replaced by a wedge ``wedge``
         fin thicknesses long and the blunt trailing edge closed by another (the
-        section becomes a hexagon; the closing wedge carries no force); a round-nosed airfoil likewise, with a sharp trailing
+        section becomes a hexagon; neither wedge carries axial force); a round-nosed airfoil likewise, with a sharp trailing
         edge bevelled over the aft 70 % of the mean chord; other sections
         unchanged.  The wedge's panels carry no
         axial force: linear supersonic theory cannot solve a blunt edge (it is
@@ -199,7 +199,7 @@ class FinGeometry:
             return replace(self, section="double_wedge", le_bevel=wedge * self.thickness,
                            te_bevel=0.7 * mean_chord, blunt_leading_edge=True)
         # the blunt trailing edge closed by a wedge as long as the leading edge's (no
-        # force on it: the base behind a blunt edge is the base-drag model's); a
+        # axial force on it: the base behind a blunt edge is the base-drag model's); a
         # square step there made the body panels behind a fin root singular in
         # cross-flow wherever the body runs on past the fins (EuRoC'22 Andromeda,
         # Cp -7.8 at Mach 1.5, alpha 2 deg)
@@ -518,10 +518,17 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
         if closure > 0:
             aft = mid >= 1.0 - closure / chord                 # intervals centred in it
             aft[-1] = True
-            no_force[j] = np.concatenate([aft[::-1], aft])   # lower TE -> LE, then upper LE -> TE
+            aft2 = np.concatenate([aft[::-1], aft])            # lower TE -> LE, then upper LE -> TE
+            if f.blunt_trailing_edge:
+                # supersonic: the pressure difference across the fin carries on to the
+                # trailing edge (no Kutta unloading); only the wedge's axial force is
+                # left out (the blunt base's drag is the base-drag model's)
+                no_axial[j] |= aft2
+            else:
+                no_force[j] = aft2
         if f.blunt_leading_edge:
             fore = mid * chord < f.bevels(chord)[0]
-            no_axial[j] = np.concatenate([fore[::-1], fore])
+            no_axial[j] |= np.concatenate([fore[::-1], fore])
     for sj in s:
         chord = f.chord_at(sj)
         xle = f.x_root + f.le_at(sj)

@@ -186,3 +186,73 @@ def test_freeform_fins_with_a_pointed_tip_mesh_cleanly():
     fin = next(n for n in nets if n.name == "fin0").points
     assert np.ptp(fin[-1], axis=0).max() < 1e-12            # the tip is a point
     assert not any(n.name.startswith("cap") for n in nets)  # so no tip cap
+
+
+def _body_thetas(nets):
+    """Meridian angles [rad] of the body network (from the bottom through +y)."""
+    body = next(n for n in nets if n.name == "body")
+    p = body.points[:, -1]                       # the last station: on the cylinder
+    return np.unwrap(np.arctan2(p[:, 1], -p[:, 2]))
+
+
+def test_three_fin_roots_lie_on_meridians_without_slivers():
+    """3 fins on a 32-line circle: every gap between fin roots is split evenly, so
+    no body panel is narrower than 0.6 of the nominal 2 pi / 32 (the old even
+    spacing left 1.5 deg slivers beside two roots); fin-root pairs (+-eps) excepted."""
+    body = BodyGeometry(np.array([0.0, 0.3, 2.5]), np.array([0.0, 0.075, 0.075]))
+    fins = (FinGeometry(3, 0.23, 0.11, 0.185, 0.12, 2.145, 0.0058, roll=np.pi / 2,
+                        section="rounded"),)
+    nets = mesh_rocket(RocketGeometry(body, fins), symmetric=False, options=MeshOptions())
+    th = _body_thetas(nets)
+    d = np.diff(th)
+    wide = d[d > 1e-6]
+    assert wide.min() >= 0.6 * 2 * np.pi / 32
+    # each root: its line of the even split with the +-eps lines opening the fin
+    # footprint beside it (two tiny gaps per fin)
+    assert int(np.sum(d <= 1e-6)) == 2 * 3
+
+
+def test_four_fins_rolled_45_keep_the_even_circle():
+    """Fins on the even spacing: the meridians are np.linspace's (tables unchanged)."""
+    nets = mesh_rocket(_rocket(), symmetric=True, options=MeshOptions(n_theta=32))
+    th = _body_thetas(nets)
+    lines = th[np.concatenate([[True], np.diff(th) > 1e-6])]
+    np.testing.assert_allclose(np.sort(lines), np.linspace(0.0, np.pi, 17), atol=1e-8)
+
+
+def _haack(fineness, n=400):
+    """Von Karman (Haack C = 0) nose of radius 1 and length 2 * fineness, then a cylinder."""
+    L = 2.0 * fineness
+    th = np.linspace(0.0, np.pi, n)
+    x = 0.5 * L * (1 - np.cos(th))
+    r = np.sqrt((th - 0.5 * np.sin(2 * th)) / np.pi)
+    return BodyGeometry(np.append(x, 4 * L), np.append(r, 1.0))
+
+
+@pytest.mark.parametrize("mach", [1.2, 1.5, 2.0])
+def test_haack_tip_is_meshed_subinclined(mach):
+    """A 2-calibre von Karman nose: the cosine-clustered first panel is steeper
+    than the Mach cone (B tan > 0.951: the solver refuses it); with tip_mach the
+    first panel's secant obeys B tan <= 0.93 when a tip of <= 10 % of the nose
+    does it, and the stations are unchanged otherwise."""
+    from dataclasses import replace
+
+    from panair.mesh import TIP_BT_MAX, TIP_MAX_FRACTION, _axial_stations
+    g = _haack(2.0)
+    b = np.sqrt(mach**2 - 1)
+    plain = _axial_stations(g, (), MeshOptions())
+    tipped = _axial_stations(g, (), replace(MeshOptions(), tip_mach=(mach,)))
+    sec = lambda xs: float(np.interp(xs[1], g.x, g.r) / xs[1])
+    if b * sec(plain) <= TIP_BT_MAX:                 # the solver takes the tip as it is
+        np.testing.assert_array_equal(tipped, plain)
+    elif len(tipped) < len(plain):
+        assert b * sec(tipped) <= TIP_BT_MAX and tipped[1] <= TIP_MAX_FRACTION * 4.0
+        np.testing.assert_array_equal(tipped[1:], plain[len(plain) - len(tipped) + 1:])
+    else:                                            # no tip of <= 10 % of the nose does it
+        near = plain[1:][plain[1:] <= TIP_MAX_FRACTION * 4.0]
+        assert np.all(b * np.interp(near, g.x, g.r) / near > TIP_BT_MAX)
+        np.testing.assert_array_equal(tipped, plain)
+    # a cone within the limit is never cut
+    cone = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    np.testing.assert_array_equal(_axial_stations(cone, (), replace(MeshOptions(), tip_mach=(mach,))),
+                                  _axial_stations(cone, (), MeshOptions()))

@@ -137,3 +137,41 @@ def test_leading_edge_bevel_only_fins_solve_supersonic():
     ackeret = 4 * 2 * (0.0025 / 0.02) * 0.005 * 0.1 / np.sqrt(3.0) / (np.pi * 0.05**2)
     print(f"\nrear bevel wave drag {ca[0.02] - ca[0.0]:.4f} vs Ackeret 2-D {ackeret:.4f}")
     assert ca[0.0] > 0 and 0.7 * ackeret < ca[0.02] - ca[0.0] < 1.0 * ackeret
+
+
+def test_three_fin_haack_rocket_with_body_behind_blunt_fins_solves():
+    """EuRoC'22 Andromeda's layout (2-calibre von Karman nose, 3 rounded fins
+    ending 0.12 m ahead of the base), coarse mesh, Mach 1.5: linear theory solves
+    every angle (before: 34 superinclined tip panels, then Cp 5e8 beside the fin
+    roots and -7.8 behind the blunt trailing edges, so the whole Mach number fell
+    to local inclination).  CN is linear in alpha at small angles: CN(4)/CN(2)
+    = 2 within 1 %, and CN-alpha lies between the slender-body nose value (2/rad
+    on this reference area) and that plus the fins' linear-theory flat-plate
+    4/B per radian on their roll-averaged planform (3 fins act as 1.5 in the
+    plane) times 1.5 for fin-body interference (slender-body K_W(B) + K_B(W) =
+    1.45 at r/s = 0.29; Pitts, Nielsen & Kaattari, NACA TR 1307, 1957)."""
+    import math
+    from dataclasses import replace
+
+    from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
+    from panair.solver import build_panels, make_solver
+    th = np.linspace(0, np.pi, 200)
+    x = 0.15 * (1 - np.cos(th))
+    r = 0.075 * np.sqrt((th - 0.5 * np.sin(2 * th)) / np.pi)
+    body = BodyGeometry(np.append(x, 2.5), np.append(r, 0.075))
+    fins = (FinGeometry(3, 0.23, 0.11, 0.185, 0.12, 2.145, 0.0058, roll=np.pi / 2,
+                        section="rounded"),)
+    opt = replace(MeshOptions(n_theta=24, n_nose=12, body_spacing=0.6, n_chord=16,
+                              n_span=4).for_mach(1.2), tip_mach=(1.5,))
+    p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=False, options=opt),
+                     symmetric=False)
+    sref = math.pi * 0.075**2
+    res = make_solver(p, 1.5, sref=sref, lref=0.15).solve(np.radians([0.0, 2.0, 4.0]))
+    cn = np.array([q.CN for q in res])
+    cna = cn[1] / math.radians(2.0)
+    planform = 3 * 0.5 * (0.23 + 0.11) * 0.185 / sref
+    print(f"CN {cn}, CN-alpha {cna:.2f} /rad (bounds 2, {2 + 4 / math.sqrt(1.25) * planform * 0.5 * 1.5:.2f})")
+    assert abs(cn[0]) < 0.01 * abs(cn[1])
+    assert cn[2] / cn[1] == pytest.approx(2.0, rel=0.01)
+    # 3 fins: the roll average of their normal force is half the planform of a pair in the plane
+    assert 2.0 < cna < 2 + 4 / math.sqrt(1.25) * planform * 0.5 * 1.5
