@@ -384,16 +384,27 @@ class FlightModel:
         travel = ca.dot(x[0:3], rail_direction_l(P["inclination"], P["heading"]))
         return travel - (P["rail_length"] - self.setup.rail_exit_offset)
 
+    @property
+    def rail_exit_root(self) -> ca.Function:
+        """``(t_guess, p) -> t_r``: the rail-exit time, root of :meth:`rail_residual` by
+        CasADi's Newton ``rootfinder`` (symbolic uses: sensitivities, staged rockets);
+        built on first use (~20 ms and the rail trajectory's Function that a numeric
+        run from the compiled library does not need)."""
+        root = self.__dict__.get("_rail_exit_root")
+        if root is None:
+            t_r = ca.MX.sym("t_r")
+            p = ca.MX.sym("p", self.n_p)
+            g = ca.Function("rail_residual", [t_r, p], [self.rail_residual(t_r, p)])
+            root = self.__dict__["_rail_exit_root"] = ca.rootfinder(
+                "rail_exit", "newton", g, {"abstol": 1e-10, "max_iter": 50, "error_on_fail": True})
+        return root
+
     def _build_events(self, apex: ca.Function | None = None):
         ps = ca.SX.sym("p", self.n_p)
         P = params.unpack(ps)
         self._launch = ca.Function("launch", [ps], [self.initial_state(ps),
                                                     rail_direction_l(P["inclination"], P["heading"])])
-        t_r = ca.MX.sym("t_r")
-        p = ca.MX.sym("p", self.n_p)
-        g = ca.Function("rail_residual", [t_r, p], [self.rail_residual(t_r, p)])
-        self.rail_exit_root = ca.rootfinder("rail_exit", "newton", g,
-                                            {"abstol": 1e-10, "max_iter": 50, "error_on_fail": True})
+        self.__dict__.pop("_rail_exit_root", None)
         x = ca.SX.sym("x", 13)
         self.vz_l = ca.Function("vz_l", [x], [(rotation_matrix(x[6:10]) @ x[3:6])[2]])
         if apex is None:

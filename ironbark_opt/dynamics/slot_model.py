@@ -126,12 +126,13 @@ class SlotFlightModel(FlightModel):
         self._apogee_run = _buffered(self._apogee_run)
         self._launch, self.vz_l = _buffered(self._launch), _buffered(self.vz_l)
 
-    def _cached_run(self, phase: str):
-        """The compiled trajectory of ``phase`` if the cache has it, found by its name and
-        key (as :meth:`_compiled` names it) without loading the symbolic Function."""
-        if not self.jit or self._key is None:
+    def _cached_run(self, phase: str, kind: str = "traj"):
+        """The compiled trajectory (``kind="outputs"``: output rows) of ``phase`` if the
+        cache has it, found by its name and key (as :meth:`_compiled` names it) without
+        loading or building the symbolic Function."""
+        if not self.jit or self._key is None or phase not in ("rail", "boost", "coast"):
             return None
-        return cached_library(f"traj_{phase}", self._library_key())
+        return cached_library(f"{kind}_{phase}", self._library_key())
 
     def _rebuild_args(self) -> tuple:
         return (self.setup, self.slot.n_knots, (self.cap_boost, self.cap_coast), self.steps)
@@ -218,8 +219,13 @@ class SlotFlightModel(FlightModel):
         before, so the same numbers.  A parameter matrix (one column a sample)
         takes the per-sample map."""
         per_sample = super()._outputs_function
-        if phase not in self.__dict__.get("_out_cache", {}):
-            per_sample(phase, 1)                       # builds (and compiles) the phase's base Function
+        out_cache = self.__dict__.setdefault("_out_cache", {})
+        if phase not in out_cache:
+            lib = self._cached_run(phase, "outputs")   # the library, without building the symbolic Function
+            if lib is not None:
+                out_cache[phase] = lib
+            else:
+                per_sample(phase, 1)                   # builds (and compiles) the phase's base Function
         shared = self.__dict__.setdefault("_out_shared", {})
         k = self.OUTPUT_BLOCK
         if phase not in shared:
