@@ -148,12 +148,13 @@ class FlightModel:
         return compile_function(func, key=key, background=self.jit == "auto")
 
     def _compile_in_background(self) -> None:
-        """Start (once per model) the detached process that rebuilds this model from its
+        """Start (once per model and grid) the detached process that rebuilds this model from its
         setup and the model cache and compiles its libraries for the next run
         (:func:`~ironbark_opt.dynamics.model_cache.compile_detached`): this process pays
         neither the C code generation nor the compiler."""
-        if not self.__dict__.get("_background_started"):
-            self.__dict__["_background_started"] = True
+        started = self.__dict__.setdefault("_background_started", set())
+        if self._library_key() not in started:             # once per grid (set_discretisation)
+            started.add(self._library_key())
             model_cache.compile_detached(self)
 
     def _rebuild_args(self) -> tuple:
