@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import threading
 
 import casadi as ca
 import numpy as np
@@ -41,7 +42,7 @@ class _Buffered:
     attributes (``map``, ``name``, ...) are the Function's."""
 
     def __init__(self, func):
-        self._func = func
+        self._func, self._lock = func, threading.Lock()
         self._buf, self._eval = func.buffer()
         self._args = [np.zeros(func.nnz_in(i)) for i in range(func.n_in())]
         for i, arr in enumerate(self._args):
@@ -60,12 +61,17 @@ class _Buffered:
     def __call__(self, *args):
         if len(args) != len(self._args) or any(isinstance(a, (ca.MX, ca.SX)) for a in args):
             return self._func(*args)
-        for arr, value in zip(self._args, args):
-            arr[:] = np.ravel(np.asarray(value, dtype=float), order="F")
-        self._eval()
-        if self._buf.ret() != 0:
+        values = [np.ravel(np.asarray(a, dtype=float), order="F") for a in args]
+        if any(v.size not in (1, arr.size) for v, arr in zip(values, self._args)):
+            return self._func(*args)           # CasADi's own broadcasting rules (or its error)
+        with self._lock:                       # one buffer: one evaluation at a time
+            for arr, v in zip(self._args, values):
+                arr[:] = v                     # a single number fills the input, as CasADi does
+            self._eval()
+            ok = self._buf.ret() == 0
+            out = [np.array(r[0, 0]) if r.size == 1 else r.T.copy() for r in self._res]  # 1 x 1: a number
+        if not ok:
             return self._func(*args)
-        out = [np.array(r[0, 0]) if r.size == 1 else r.T.copy() for r in self._res]    # 1 x 1: a number
         return out[0] if len(out) == 1 else tuple(out)
 
     def __getattr__(self, name):
