@@ -276,8 +276,15 @@ def simulate(setup, *, parameters: Mapping[str, float] | None = None, p=None,
         run = run_controlled(model, p, descent=descent)
     else:
         run = model.run(p, descent=descent)
+    return flight_of_run(setup, model, p, run)
+
+
+def flight_of_run(setup, model: FlightModel, p, run: dict) -> Flight:
+    """The :class:`Flight` of ``run``, a flight ``model`` has flown with the parameter
+    vector ``p`` (``model.run(p)``): what :func:`simulate` returns, without flying
+    it again (the ballast solution reports the root's own flight)."""
     df = _table(model, run)
     _warn_outside_table(setup, df)
-    return Flight(name=setup.name, parameters=params_mod.to_dict(p[:params_mod.SIZE]),
+    return Flight(name=setup.name, parameters=params_mod.to_dict(np.asarray(p, dtype=float)[:params_mod.SIZE]),
                   summary_values=_summary(model, run, df),
                   _columns=df)

@@ -291,54 +291,87 @@ def _compile_detached(cc: str, src: Path, lib: Path) -> None:
         pending.unlink(missing_ok=True)
 
 
+def _claim(pending: Path) -> bool:
+    """Write the marker ``pending`` of a background compile unless a young one exists
+    (at most one compile per library at a time; benchmarks wait for the markers)."""
+    import time
+    try:
+        pending.parent.mkdir(parents=True, exist_ok=True)
+        if pending.exists() and time.time() - pending.stat().st_mtime < _PENDING_S:
+            return False
+        pending.write_text("pending\n")
+        return True
+    except OSError:
+        return False
+
+
+def run_detached(target: str, args: list[str], cleanup: list[Path]) -> None:
+    """Call ``target`` (``"module:function"``) with ``args`` (strings) in a detached Python
+    process at the lowest priority (own session, ``nice``, its autogroup at nice 19),
+    which outlives this one.  It deletes the files ``cleanup`` (the compile's marker,
+    written by the caller with :func:`_claim`, and its inputs) when done, whatever
+    happens; if it cannot start they are deleted here."""
+    import sys
+    script = (_LOWEST_GROUP_PY +
+              "import sys, os, importlib\n"
+              "n = int(sys.argv[2])\n"
+              "files, args = sys.argv[3:3 + n], sys.argv[3 + n:]\n"
+              "mod, name = sys.argv[1].split(':')\n"
+              "try:\n"
+              "    getattr(importlib.import_module(mod), name)(*args)\n"
+              "finally:\n"
+              "    for path in files:\n"
+              "        try: os.unlink(path)\n"
+              "        except OSError: pass\n")
+    nice = shutil.which("nice")
+    # the shell moves the session's group to nice 19 before Python starts (its start-up,
+    # ~40 ms, would otherwise share the CPU equally with the process that asked)
+    cmd = ([nice, "-n", "10"] if nice else []) + ["sh", "-c", _LOWEST_GROUP_SH + 'exec "$0" "$@"',
+                                                   sys.executable, "-c", script, target, str(len(cleanup)),
+                                                   *map(str, cleanup), *args]
+    try:
+        subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                         start_new_session=True, close_fds=True)
+    except OSError:
+        for path in cleanup:
+            Path(path).unlink(missing_ok=True)
+
+
 def compile_detached(func: ca.Function, key: str, extra: str | None = None) -> None:
     """Generate and compile ``func`` (as :func:`compile_function` with ``key``) in a
-    detached, low-priority Python process, so this process pays only for saving the
-    Function, not for generating its C code (the ballast NLP: ~0.5 s).
+    detached, low-priority Python process (:func:`run_detached`), so this process pays
+    only for saving the Function, not for generating its C code (the ballast NLP: ~0.5 s).
 
     ``extra``: ``"module:function"``, called there with ``func`` to give the
     Function(s) generated into the same library (e.g. its Jacobian).  At most one
     such compile per library runs; a missing compiler or a failure only means the
     VM stays in use.
     """
-    import sys
-    import time
     if _compiler() is None:
         return
-    cache = default_cache_dir()
-    lib = cache / f"{func.name()}_{key}.so"
+    lib = default_cache_dir() / f"{func.name()}_{key}.so"
     pending = lib.with_name(f".{lib.stem}.c")          # the marker background compiles leave (benchmarks wait)
-    try:
-        cache.mkdir(parents=True, exist_ok=True)
-        if lib.exists() or (pending.exists() and time.time() - pending.stat().st_mtime < _PENDING_S):
-            return
-        saved = lib.with_name(f".{lib.stem}.casadi")
-        func.save(str(saved))
-        pending.write_text("pending\n")
-    except OSError:
+    if lib.exists() or not _claim(pending):
         return
-    script = (_LOWEST_GROUP_PY +
-              "import sys, importlib, casadi as ca\n"
-              "from ironbark_opt.dynamics.integrator import compile_function\n"
-              "f = ca.Function.load(sys.argv[1])\n"
-              "extra = None\n"
-              "if sys.argv[3]:\n"
-              "    mod, name = sys.argv[3].split(':')\n"
-              "    build = getattr(importlib.import_module(mod), name)\n"
-              "    extra = lambda: (build(f),)\n"
-              "try:\n"
-              "    compile_function(f, key=sys.argv[2], extra=extra)\n"
-              "finally:\n"
-              "    import os\n"
-              "    for path in (sys.argv[1], sys.argv[4]):\n"
-              "        try: os.unlink(path)\n"
-              "        except OSError: pass\n")
-    nice = shutil.which("nice")
-    cmd = ([nice, "-n", "10"] if nice else []) + [sys.executable, "-c", script, str(saved), key, extra or "",
-                                                   str(pending)]
+    saved = lib.with_name(f".{lib.stem}.casadi")
     try:
-        subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                         start_new_session=True, close_fds=True)
-    except OSError:
+        func.save(str(saved))
+    except (OSError, RuntimeError):
         pending.unlink(missing_ok=True)
+        return
+    run_detached("ironbark_opt.dynamics.integrator:_compile_saved", [str(saved), key, extra or ""],
+                 [saved, pending])
 
+
+def _compile_saved(saved: str, key: str, extra: str = "") -> None:
+    """:func:`compile_detached`'s child: load the saved Function and compile it."""
+    import importlib
+    f = ca.Function.load(saved)
+    build = None
+    if extra:
+        mod, name = extra.split(":")
+        fn = getattr(importlib.import_module(mod), name)
+
+        def build():
+            return (fn(f),)
+    compile_function(f, key=key, extra=build)

@@ -134,10 +134,38 @@ class FlightModel:
         return hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
 
     def _compiled(self, func: ca.Function) -> ca.Function:
-        """``func`` compiled as ``self.jit`` asks (the VM Function itself when it says no)."""
+        """``func`` compiled as ``self.jit`` asks (the VM Function itself when it says no);
+        ``"auto"``: the cached library, else the VM and :meth:`_compile_in_background`."""
         if not self.jit:
             return func
-        return compile_function(func, key=self._library_key(), background=self.jit == "auto")
+        key = self._library_key()
+        if self.jit == "auto" and key is not None:
+            lib = cached_library(func.name(), key)
+            if lib is None:
+                self._compile_in_background()
+                return func
+            return lib
+        return compile_function(func, key=key, background=self.jit == "auto")
+
+    def _compile_in_background(self) -> None:
+        """Start (once per model and grid) the detached process that rebuilds this model from its
+        setup and the model cache and compiles its libraries for the next run
+        (:func:`~ironbark_opt.dynamics.model_cache.compile_detached`): this process pays
+        neither the C code generation nor the compiler."""
+        started = self.__dict__.setdefault("_background_started", set())
+        if self._library_key() not in started:             # once per grid (set_discretisation)
+            started.add(self._library_key())
+            model_cache.compile_detached(self)
+
+    def _rebuild_args(self) -> tuple:
+        """Positional arguments that rebuild this model (with ``jit=``) in another process."""
+        return (self.setup, self.steps)
+
+    def _compile_libraries(self, discretisation) -> None:
+        """Compile, now, every library ``jit="auto"`` looks for (the background child)."""
+        self.set_discretisation(*discretisation)
+        self.jit = True
+        self._compile_phases()
 
     #: the Functions compiled into the model's one library with the ascent
     _LIBRARY = ("ascent_batch", "traj_rail", "traj_boost", "traj_coast", "apogee_event", "outputs_rail",
@@ -159,19 +187,22 @@ class FlightModel:
             self._apogee_run = self._compiled(self._apogee_event)
             return
         lib = cached_library("ascent", key)
-        if lib is None:
+        if lib is None and self.jit == "auto":  # the VM now, the library for the next run
+            self._compile_in_background()
+        elif lib is None:
             vm, vm_batch = self._ascent_vm()
             members = {"ascent_batch": vm_batch,
                        "traj_rail": self.trajectory["rail"], "traj_boost": self.trajectory["boost"],
                        "traj_coast": self.trajectory["coast"], "apogee_event": self._apogee_event,
                        **{f"outputs_{ph}": self._outputs_base(ph) for ph in ("rail", "boost", "coast")}}
-            lib = compile_function(vm, key=key, background=self.jit == "auto",
-                                   extra=lambda: [members[n] for n in self._LIBRARY])
-            if lib is vm:                       # compiling in the background (or failed): the VM meanwhile
-                for ph in ("rail", "boost", "coast"):
-                    self._run[ph] = self.trajectory[ph]
-                self._apogee_run = self._apogee_event
-                return
+            lib = compile_function(vm, key=key, extra=lambda: [members[n] for n in self._LIBRARY])
+            if lib is vm:                       # no compiler, or compiling failed
+                lib = None
+        if lib is None:                         # the VM (meanwhile)
+            for ph in ("rail", "boost", "coast"):
+                self._run[ph] = self.trajectory[ph]
+            self._apogee_run = self._apogee_event
+            return
         self._lib = {"ascent": lib, **{name: library_member(name, "ascent", key) for name in self._LIBRARY}}
         for ph in ("rail", "boost", "coast"):
             self._run[ph] = self._lib[f"traj_{ph}"]
@@ -354,16 +385,27 @@ class FlightModel:
         travel = ca.dot(x[0:3], rail_direction_l(P["inclination"], P["heading"]))
         return travel - (P["rail_length"] - self.setup.rail_exit_offset)
 
+    @property
+    def rail_exit_root(self) -> ca.Function:
+        """``(t_guess, p) -> t_r``: the rail-exit time, root of :meth:`rail_residual` by
+        CasADi's Newton ``rootfinder`` (symbolic uses: sensitivities, staged rockets);
+        built on first use (~20 ms and the rail trajectory's Function that a numeric
+        run from the compiled library does not need)."""
+        root = self.__dict__.get("_rail_exit_root")
+        if root is None:
+            t_r = ca.MX.sym("t_r")
+            p = ca.MX.sym("p", self.n_p)
+            g = ca.Function("rail_residual", [t_r, p], [self.rail_residual(t_r, p)])
+            root = self.__dict__["_rail_exit_root"] = ca.rootfinder(
+                "rail_exit", "newton", g, {"abstol": 1e-10, "max_iter": 50, "error_on_fail": True})
+        return root
+
     def _build_events(self, apex: ca.Function | None = None):
         ps = ca.SX.sym("p", self.n_p)
         P = params.unpack(ps)
         self._launch = ca.Function("launch", [ps], [self.initial_state(ps),
                                                     rail_direction_l(P["inclination"], P["heading"])])
-        t_r = ca.MX.sym("t_r")
-        p = ca.MX.sym("p", self.n_p)
-        g = ca.Function("rail_residual", [t_r, p], [self.rail_residual(t_r, p)])
-        self.rail_exit_root = ca.rootfinder("rail_exit", "newton", g,
-                                            {"abstol": 1e-10, "max_iter": 50, "error_on_fail": True})
+        self.__dict__.pop("_rail_exit_root", None)
         x = ca.SX.sym("x", 13)
         self.vz_l = ca.Function("vz_l", [x], [(rotation_matrix(x[6:10]) @ x[3:6])[2]])
         if apex is None:
@@ -540,8 +582,9 @@ class FlightModel:
         # covers gravity falling off with height.
         t_end = t_b + vz_b / G0 + 2.0
         for _ in range(3):
-            X_coast = np.array(self._run["coast"](x_b, t_b, t_end, p))
-            vz = np.array(self._mapped("vz", X_coast.shape[1])(X_coast)).ravel()
+            X_dm = self._run["coast"](x_b, t_b, t_end, p)
+            X_coast = np.array(X_dm)
+            vz = np.array(self._mapped("vz", X_coast.shape[1])(X_dm)).ravel()    # no NumPy round trip
             below = np.nonzero(vz <= 0)[0]
             if below.size:
                 break

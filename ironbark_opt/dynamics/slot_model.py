@@ -17,7 +17,9 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import threading
 
+import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
@@ -27,6 +29,57 @@ from ironbark_opt.dynamics.integrator import (cached_library, grid_fractions, ji
                                                phase_trajectory, rk4_step)
 from ironbark_opt.dynamics.model import FlightModel, Steps, initial_boost_steps
 from ironbark_opt.motors.slot import MotorSlot
+
+
+class _Buffered:
+    """A Function called on numbers through a CasADi buffer (``Function.buffer``):
+    NumPy arrays in and out, no DM conversion.  A slotted ``p_ext`` has ~1600
+    entries and a run calls the phase Functions ~12 times with it; converting it
+    to a DM costs ~0.25 ms a call and a trajectory's result back to NumPy another
+    ~0.2 ms, more than some of the calls themselves.  The same compiled (or VM)
+    evaluation, so the same numbers.  Symbolic arguments, or an evaluation that
+    fails, go through the Function itself (its own result or error).  Other
+    attributes (``map``, ``name``, ...) are the Function's."""
+
+    def __init__(self, func):
+        self._func, self._lock = func, threading.Lock()
+        self._buf, self._eval = func.buffer()
+        self._args = [np.zeros(func.nnz_in(i)) for i in range(func.n_in())]
+        for i, arr in enumerate(self._args):
+            self._buf.set_arg(i, memoryview(arr))
+        # column-major (rows x cols) = C order (cols x rows): the transpose is the matrix
+        self._res = [np.zeros((func.size2_out(i), func.size1_out(i))) for i in range(func.n_out())]
+        for i, arr in enumerate(self._res):
+            self._buf.set_res(i, memoryview(arr))
+
+    @staticmethod
+    def applies(func) -> bool:
+        """Dense inputs and outputs only (the buffers are filled as dense columns)."""
+        return all(func.sparsity_in(i).is_dense() for i in range(func.n_in())) and \
+            all(func.sparsity_out(i).is_dense() for i in range(func.n_out()))
+
+    def __call__(self, *args):
+        if len(args) != len(self._args) or any(isinstance(a, (ca.MX, ca.SX)) for a in args):
+            return self._func(*args)
+        values = [np.ravel(np.asarray(a, dtype=float), order="F") for a in args]
+        if any(v.size not in (1, arr.size) for v, arr in zip(values, self._args)):
+            return self._func(*args)           # CasADi's own broadcasting rules (or its error)
+        with self._lock:                       # one buffer: one evaluation at a time
+            for arr, v in zip(self._args, values):
+                arr[:] = v                     # a single number fills the input, as CasADi does
+            self._eval()
+            ok = self._buf.ret() == 0
+            out = [np.array(r[0, 0]) if r.size == 1 else r.T.copy() for r in self._res]  # 1 x 1: a number
+        if not ok:
+            return self._func(*args)
+        return out[0] if len(out) == 1 else tuple(out)
+
+    def __getattr__(self, name):
+        return getattr(self._func, name)
+
+
+def _buffered(func):
+    return _Buffered(func) if _Buffered.applies(func) else func
 
 
 class SlotFlightModel(FlightModel):
@@ -73,14 +126,31 @@ class SlotFlightModel(FlightModel):
         for ph in ("rail", "boost", "coast"):
             self._run[ph] = self._cached_run(ph) or self._compiled(self.trajectory[ph])
         self._apogee_run = self._compiled(self._apogee_event)
+        # a run calls these ~12 times with p_ext (~1600 numbers): no DM conversions
+        for ph in ("rail", "boost", "coast"):
+            self._run[ph] = _buffered(self._run[ph])
+        self._apogee_run = _buffered(self._apogee_run)
+        self._launch, self.vz_l = _buffered(self._launch), _buffered(self.vz_l)
 
-    def _cached_run(self, phase: str):
-        """The compiled trajectory of ``phase`` if the cache has it, found by its name and
-        key (as :meth:`_compiled` names it) without loading the symbolic Function."""
-        if not self.jit or self._key is None:
+    def _cached_run(self, phase: str, kind: str = "traj"):
+        """The compiled trajectory (``kind="outputs"``: output rows) of ``phase`` if the
+        cache has it, found by its name and key (as :meth:`_compiled` names it) without
+        loading or building the symbolic Function."""
+        if not self.jit or self._key is None or phase not in ("rail", "boost", "coast"):
             return None
-        key = hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
-        return cached_library(f"traj_{phase}", key)
+        return cached_library(f"{kind}_{phase}", self._library_key())
+
+    def _rebuild_args(self) -> tuple:
+        return (self.setup, self.slot.n_knots, (self.cap_boost, self.cap_coast), self.steps)
+
+    def _compile_libraries(self, discretisation) -> None:
+        """Compile, now, every library ``jit="auto"`` looks for: the phase trajectories,
+        the apogee event and the phases' output rows (one library each)."""
+        self.jit = True
+        for ph in ("rail", "boost", "coast"):
+            self._compiled(self.trajectory[ph])
+            self._compiled(self._outputs_base(ph))
+        self._compiled(self._apogee_event)
 
     # ------------------------------------------------------------ layout of p_ext
     def parameters(self, p, motor, grid: tuple[int, int, float]) -> np.ndarray:
@@ -155,12 +225,17 @@ class SlotFlightModel(FlightModel):
         before, so the same numbers.  A parameter matrix (one column a sample)
         takes the per-sample map."""
         per_sample = super()._outputs_function
-        if phase not in self.__dict__.get("_out_cache", {}):
-            per_sample(phase, 1)                       # builds (and compiles) the phase's base Function
+        out_cache = self.__dict__.setdefault("_out_cache", {})
+        if phase not in out_cache:
+            lib = self._cached_run(phase, "outputs")   # the library, without building the symbolic Function
+            if lib is not None:
+                out_cache[phase] = lib
+            else:
+                per_sample(phase, 1)                   # builds (and compiles) the phase's base Function
         shared = self.__dict__.setdefault("_out_shared", {})
         k = self.OUTPUT_BLOCK
         if phase not in shared:
-            shared[phase] = self._out_cache[phase].map(f"outputs_{phase}_shared", "serial", k, [2], [])
+            shared[phase] = _buffered(self._out_cache[phase].map(f"outputs_{phase}_shared", "serial", k, [2], []))
 
         def call(X, T, P):
             P = np.asarray(P, dtype=float)
@@ -171,10 +246,17 @@ class SlotFlightModel(FlightModel):
             if pad:
                 X = np.hstack([X, np.repeat(X[:, -1:], pad, axis=1)])
                 T = np.hstack([T, np.repeat(T[:, -1:], pad, axis=1)])
-            P = P.reshape(-1, 1)
+            P = P.ravel()
             return np.hstack([np.array(shared[phase](X[:, i:i + k], T[:, i:i + k], P))
                               for i in range(0, n + pad, k)])[:, :n]
         return call
+
+    def _mapped(self, key, n):
+        """The mapped Functions of :class:`FlightModel` (kept there), called through buffers."""
+        cache = self.__dict__.setdefault("_map_buffered", {})
+        if (key, n) not in cache:
+            cache[(key, n)] = _buffered(super()._mapped(key, n))
+        return cache[(key, n)]
 
     def _set_trajectory(self, phase: str, n: int):
         """The grids live in ``p``: nothing to rebuild (``_choose_grid`` only records ``n``)."""

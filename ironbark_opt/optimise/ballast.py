@@ -34,7 +34,7 @@ from ironbark_opt.dynamics.integrator import cached_library, compile_detached, c
 from ironbark_opt.dynamics.model import _final_state
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import InputError
-from ironbark_opt.flight import flight_model, simulate
+from ironbark_opt.flight import flight_model, flight_of_run
 from ironbark_opt.optimise.target import parse_target
 from ironbark_opt.roots import illinois
 
@@ -398,7 +398,7 @@ def _solution(setup, model, p_nom, m_b, x_b, run, target_agl, feasible, status, 
     p = p_nom.copy()
     p[params.index("ballast_mass")] = m_b
     p[params.index("ballast_x")] = x_b
-    flight = simulate(setup, p=p, model=model)
+    flight = flight_of_run(setup, model, p, run)       # run = model.run(p): not flown again
     s = flight.summary_values
     values = {
         "ballast_kg": float(m_b), "ballast_x_m": float(x_b), "target_agl_m": float(target_agl),

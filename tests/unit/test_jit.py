@@ -54,25 +54,91 @@ def test_compiled_and_vm_agree_to_1e_9_relative(tmp_path, monkeypatch):
     assert err < 1e-9
 
 
+def _capture_detached(monkeypatch) -> list:
+    """Record the detached processes a first run would start, instead of starting them
+    (the real spawn is tested in test_compile_detached.py): on a busy machine a
+    lowest-priority compile can wait for minutes."""
+    calls = []
+    monkeypatch.setattr("ironbark_opt.dynamics.integrator.run_detached",
+                        lambda target, args, cleanup: calls.append((target, args, cleanup)))
+    return calls
+
+
+def _run_captured(calls) -> None:
+    """Do, here, what the captured detached processes would have done."""
+    import importlib
+    for target, args, cleanup in calls:
+        mod, name = target.split(":")
+        getattr(importlib.import_module(mod), name)(*args)
+        for path in cleanup:
+            Path(path).unlink(missing_ok=True)
+
+
 @pytest.mark.skipif(not compiler_available(), reason="no C compiler on this machine")
 def test_auto_flies_the_vm_now_and_compiles_in_the_background(tmp_path, monkeypatch):
-    import time
+    """A first run ("auto", nothing cached) flies the VM and generates no C code itself:
+    it hands the model's pickled constructor arguments to one detached process, which
+    rebuilds the model and compiles the library the next run loads."""
+    import casadi as ca
     monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
     monkeypatch.setenv("IRONBARK_JIT", "auto")
+    calls = _capture_detached(monkeypatch)
+    generated = []
+    monkeypatch.setattr(ca.CodeGenerator, "generate", lambda self, *a: generated.append(a))
     setup = load_setup(ROOT / "examples/calisto/calisto.toml")
     p = setup.nominal_parameters()
     first = FlightModel(setup, jit="auto")
     assert first._run["coast"] is first.trajectory["coast"]      # nothing cached: the VM
     ref = first.run(p)
-    deadline = time.time() + 240
-    while not list((tmp_path / "jit").glob("*.so")) and time.time() < deadline:
-        time.sleep(0.5)
+    assert generated == [] and not list((tmp_path / "jit").glob("*.so"))
+    assert [c[0] for c in calls] == ["ironbark_opt.dynamics.model_cache:_compile_model"]
+    assert {Path(f).name for f in calls[0][2]} == {f.name for f in (tmp_path / "jit").glob(".model_*")}
+    FlightModel(setup, jit="auto")                                # pending: not started twice
+    assert len(calls) == 1
+    monkeypatch.undo()
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("IRONBARK_JIT", "auto")
+    _run_captured(calls)
+    assert len(list((tmp_path / "jit").glob("*.so"))) == 1 and not list((tmp_path / "jit").glob(".*"))
     second = FlightModel(setup, jit="auto")
     assert second._run["coast"] is not second.trajectory["coast"]  # the library the background built
     got = second.run(p)
     err = abs(got["x_apogee"][2] - ref["x_apogee"][2]) / ref["x_apogee"][2]
     print(f"apogee VM {ref['x_apogee'][2]:.9f} m, background-compiled {got['x_apogee'][2]:.9f} m ({err:.1e})")
     assert err < 1e-9
+
+
+@pytest.mark.skipif(not compiler_available(), reason="no C compiler on this machine")
+def test_slot_model_compiles_in_the_background(tmp_path, monkeypatch):
+    """The motor-slot model of a ranking: the VM on the first run, its seven libraries
+    (phase trajectories, apogee event, output rows) from one detached process, and
+    the compiled flight and outputs equal to the VM's to 1e-9 relative."""
+    from ironbark_opt.dynamics.slot_model import SlotFlightModel
+    from ironbark_opt.motors import load_motor
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("IRONBARK_JIT", "auto")
+    calls = _capture_detached(monkeypatch)
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    motor = load_motor(ROOT / "tests/data/motors/AeroTech_M1340W.eng")
+    first = SlotFlightModel(setup, 48, (384, 320), jit="auto")
+    p = first.parameters(setup.nominal_parameters(), motor, first.grid_for(motor, setup.nominal_parameters()))
+    ref = first.run(p)
+    y_ref = first.outputs(ref["t"], ref["x"], ref["phase"], p)
+    assert len(calls) == 1 and not list((tmp_path / "jit").glob("*.so"))
+    monkeypatch.undo()
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("IRONBARK_JIT", "auto")
+    _run_captured(calls)
+    assert len(list((tmp_path / "jit").glob("*.so"))) == 7
+    second = SlotFlightModel(setup, 48, (384, 320), jit="auto")
+    got = second.run(p)
+    assert all(second._run[ph].is_a("External") for ph in ("rail", "boost", "coast"))
+    y = second.outputs(got["t"], got["x"], got["phase"], p)
+    assert got["x"].shape == ref["x"].shape
+    err_x = np.max(np.abs(got["x"] - ref["x"]) / np.maximum(np.abs(ref["x"]).max(axis=1, keepdims=True), 1e-300))
+    err_y = np.max(np.abs(y - y_ref) / np.maximum(np.abs(y_ref).max(axis=1, keepdims=True), 1e-300))
+    print(f"slot model, compiled vs VM: states {err_x:.1e}, outputs {err_y:.1e} (max relative; tolerance 1e-9)")
+    assert err_x < 1e-9 and err_y < 1e-9
 
 
 def test_cached_model_flies_bit_identically(tmp_path, monkeypatch):

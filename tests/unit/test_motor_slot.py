@@ -86,3 +86,25 @@ def test_slot_model_from_the_cache_flies_and_outputs_bit_identically(tmp_path, m
     assert np.array_equal(built.outputs(a["t"], a["x"], a["phase"], p), y)
     per_sample = built.outputs(a["t"], a["x"], a["phase"], np.repeat(p[:, None], a["t"].size, axis=1))
     assert np.array_equal(per_sample, y)
+
+
+def test_buffered_call_equals_the_function_call():
+    """The slot model's buffered calls (no DM conversion) give the Function's own numbers,
+    to the bit: matrices (column-major), a scalar filling a vector input, several
+    outputs, a 1 x 1 output as a number; symbolic and mis-sized arguments go through
+    the Function itself."""
+    from ironbark_opt.dynamics.slot_model import _buffered
+    x, t, p = ca.SX.sym("x", 3, 4), ca.SX.sym("t", 1, 4), ca.SX.sym("p", 5)
+    f = ca.Function("f", [x, t, p], [ca.sin(x) * ca.repmat(t, 3, 1) + p[1], ca.sumsqr(x) * p[4]])
+    g = _buffered(f)
+    rng = np.random.default_rng(3)
+    X, T, P = rng.normal(size=(3, 4)), rng.normal(size=(1, 4)), rng.normal(size=5)
+    for args in ((X, T, P), (X, 0.7, P)):
+        a, b = g(*args), f(*args)
+        assert np.array_equal(a[0], np.array(b[0])) and a[0].shape == (3, 4)
+        assert a[1].shape == () and float(a[1]) == float(b[1])
+    sym = g(ca.MX.sym("X", 3, 4), T, P)                     # symbolic: the Function's MX
+    assert isinstance(sym[0], ca.MX)
+    with pytest.raises(RuntimeError):                       # 2 numbers for a 4-column input: CasADi's error
+        g(X, np.ones(2), P)
+    assert g.name() == "f" and g.map(2).size2_in(0) == 8    # other attributes: the Function's
