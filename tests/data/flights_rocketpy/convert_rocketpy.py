@@ -1,5 +1,10 @@
-"""Run a RocketPy example notebook's set-up cells (rocketpy 1.13) and write the rocket
-as an Ironbark TOML (geometry only, team drag curves not used).  Lead's experiment."""
+"""Run a RocketPy example notebook's set-up cells (rocketpy 1.13, the `bench` extra) and
+write the rocket as an Ironbark TOML (geometry only; the team's drag curves are not used)
+plus its thrust curve as RocketPy flies it.  Data files the notebook names are looked up
+by name in ../shared (reference/rockets, fixtures/motors, fixtures/weather/reanalysis).
+
+Usage: python convert_rocketpy.py NAME NOTEBOOK.ipynb OUT_DIR -
+(the last argument is unused; the motor is always written as OUT_DIR/thrust.csv)."""
 import json, re, sys, os, glob, math, types
 import numpy as np
 name, nb_path, out_dir = sys.argv[1], sys.argv[2], sys.argv[3]
@@ -7,7 +12,8 @@ os.makedirs(out_dir, exist_ok=True)
 import matplotlib; matplotlib.use("Agg")
 import rocketpy
 from rocketpy import Environment
-SHARED = "/work/shared"
+from pathlib import Path
+SHARED = str(Path(__file__).resolve().parents[4] / "shared")
 def resolve(p):
     base = os.path.basename(p)
     hits = glob.glob(f"{SHARED}/reference/rockets/*/{base}") + glob.glob(f"{SHARED}/fixtures/motors/{base}") \
