@@ -52,8 +52,10 @@ def aero_group():
 @click.argument("rocket", type=click.Path(dir_okay=False))
 @click.option("--mach", default=None,
               help="Mach numbers (comma-separated; default 0.05,0.2,0.35,0.5,0.6,0.7,0.8,0.9,"
-                   "1.2,1.5,2.0). Between the critical Mach number and 1.2 the table is the "
-                   "transonic model (panair.transonic).")
+                   "0.95,1.0,1.05,1.1,1.2,1.5,2.0, extended in steps of 0.5 to 1.3 x the "
+                   "rocket's peak Mach from a flight on the file's own aerodynamics). Between "
+                   "the critical Mach number and 1.2 the table is the transonic model "
+                   "(panair.transonic).")
 @click.option("--alpha-deg", default="0,2,4,6,8,12,16,20", show_default=True,
               help="Angles of attack solved by the panel method [deg] (comma-separated, "
                    "from 0); 30, 45, 60, 75, 90 deg are added by the high-angle model.")
@@ -75,7 +77,8 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     from ironbark_opt.vehicle import load_rocket_geometry
     from panair.rocket_table import default_mach_grid, rocket_table
 
-    mach_v = default_mach_grid() if mach is None else _floats(mach, "--mach")
+    peak = estimated_peak_mach(rocket) if mach is None else None
+    mach_v = default_mach_grid(peak) if mach is None else _floats(mach, "--mach")
     alpha_v = _floats(alpha_deg, "--alpha-deg")
     if alpha_v[0] != 0.0:
         raise InputError("the first angle must be 0 (the zero-lift drag is read there)",
@@ -99,7 +102,8 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     ckpt = None if no_resume else Path(str(out) + ".solved")
     table = rocket_table(rk, aero_spec, mach_v, alpha_v, refine=refine, workers=workers,
                          progress=not no_progress and not as_json, use_panair=use_panair,
-                         checkpoint_dir=ckpt, extra_metadata={"rocket_file": str(rocket)})
+                         checkpoint_dir=ckpt, extra_metadata={"rocket_file": str(rocket),
+                                                              "peak_mach_estimate": peak})
     alpha_v = table.alpha                                  # [rad], with the high-angle model
     Path(out).parent.mkdir(parents=True, exist_ok=True)
     csv_path, json_path = table.save(out)
@@ -116,12 +120,27 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     n_sup = md.get("panels_supersonic", 0)
     result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
               "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
-              "mach": mach_v, "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
+              "mach": mach_v, "peak_mach_estimate": peak,
+              "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
               "mach_critical": md.get("mach_critical"),
               "reference_length_m": lref, "moment_reference_x_m": 0.0}
     human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
              f"{md['panels']} panels ({n_sup} supersonic), includes {', '.join(table.includes)}")
     emit(result, as_json, human)
+
+
+def estimated_peak_mach(rocket) -> float | None:
+    """The rocket's peak Mach number [-] from one flight of the file as it is (its own
+    aerodynamics: drag curves, a table, or the empirical model; its motor and launch),
+    which sets how far the default Mach grid reaches (issue 13: 1.3 x the peak); None
+    (and a warning) when the file cannot be flown (e.g. no motor resolvable)."""
+    from ironbark_opt import load_setup, simulate
+    try:
+        return float(simulate(load_setup(rocket)).summary_values["max_mach"])
+    except Exception as err:        # best effort: the build itself does not need a flight
+        warnings.warn(f"no flight to estimate the peak Mach number ({err}); the default Mach "
+                      "grid ends at 2")
+        return None
 
 
 @aero_group.command("plot")

@@ -2,6 +2,7 @@
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -61,3 +62,33 @@ def test_aero_build_rejects_a_binary_rocket_file(tmp_path):
     bad.write_bytes(b"PK\x03\x04\x92\xff binary")
     r = CliRunner().invoke(main, ["aero", "build", str(bad), "--json"])
     assert r.exit_code == 2 and "not a UTF-8 text file" in r.output and "Traceback" not in r.output
+
+
+def test_default_mach_grid_reaches_1_3_times_the_peak():
+    """Issue 13: the default grid reaches 1.3 x the rocket's own peak Mach, at least Mach 2."""
+    from panair.rocket_table import DEFAULT_MACH, default_mach_grid
+    np.testing.assert_array_equal(default_mach_grid(None), DEFAULT_MACH)
+    np.testing.assert_array_equal(default_mach_grid(1.5), DEFAULT_MACH)      # 1.95 <= 2
+    for peak in (1.6, 1.9, 2.4, 3.1):
+        g = default_mach_grid(peak)
+        assert g[-1] >= 1.3 * peak and g[-2] < 1.3 * peak
+        np.testing.assert_array_equal(g[:len(DEFAULT_MACH)], DEFAULT_MACH)
+
+
+def test_peak_mach_estimate_is_the_files_own_flight():
+    """`aero build`'s peak Mach number is the max Mach of the file flown as it is (the
+    independent path: `ironbark simulate --json`); a file that cannot fly gives None
+    with a warning (the grid then ends at 2)."""
+    import warnings
+
+    from ironbark_opt.cli.aero import estimated_peak_mach
+    r = CliRunner().invoke(main, ["simulate", str(TOML), "--json"])
+    assert r.exit_code == 0, r.output
+    flown = json.loads(r.output)["max_mach"]
+    assert estimated_peak_mach(str(TOML)) == pytest.approx(flown, rel=1e-9)
+    ork = Path(__file__).parents[1] / "data" / "ork" / "Two stage high power rocket.ork"
+    if ork.exists():
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter("always")
+            assert estimated_peak_mach(str(ork)) is None
+        assert any("peak Mach" in str(x.message) for x in w)
