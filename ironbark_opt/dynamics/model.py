@@ -178,6 +178,9 @@ class FlightModel:
         cache when it has it.  Without a cache key: one library per Function."""
         self.__dict__.pop("_ascent_cache", None)
         self.__dict__.pop("_out_cache", None)
+        # the mapped ascents of run_batch were built on the old grid's ascent
+        for k in [k for k in self.__dict__.get("_map_cache", {}) if k[0] == "ascent_batch"]:
+            del self._map_cache[k]
         self._lib = {}
         key = self._library_key()
         self._one_library = bool(self.jit) and key is not None and self._FUSED

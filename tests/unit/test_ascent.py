@@ -77,3 +77,21 @@ def test_rail_shorter_than_the_guide_distance_is_an_input_error(tmp_path, monkey
     p[params.index("rail_length")] = 0.5 * setup.rail_exit_offset
     with pytest.raises(InputError, match="rail length"):
         model.run(p)
+
+
+def test_run_batch_after_a_grid_change_flies_the_new_grid(tmp_path, monkeypatch):
+    """``set_discretisation`` (a cluster worker imposing the client's grid) after a
+    ``run_batch``: the next batch flies the new grid, equal to ``run`` on it (the
+    mapped ascent of the old grid had stayed cached under the same sample count)."""
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    model = FlightModel(setup, jit=False)
+    P = np.column_stack([setup.nominal_parameters(), setup.nominal_parameters(ballast_mass=1.0)])
+    before = model.run_batch(P)
+    nb, nc, g = model.discretisation()
+    model.set_discretisation(nb + 7, nc + 11, g)
+    after = model.run_batch(P)
+    one = model.run(P[:, 1])
+    a_new, a_old = after["x_apogee"][2, 1], before["x_apogee"][2, 1]
+    assert a_new == one["x_apogee"][2]
+    assert a_new != a_old                    # a different grid gives a (slightly) different apogee
