@@ -68,20 +68,16 @@ def read_motor_file(spec, overrides: dict | None = None):
     header's numbers from ``[motor.overrides]`` (``MOTOR_HEADER_KEYS``)."""
     from ironbark_opt.motors import load_motor
     from ironbark_opt.rocket.specs import MOTOR_HEADER_KEYS
-    try:
-        return load_motor(spec.file, spec.designation)
-    except InputError as err:
-        if err.field != "header" and err.field not in MOTOR_HEADER_KEYS:
-            raise
-        first = err
     ov = _solid_overrides(spec) if overrides is None else overrides
     header = {k: ov[k] for k in MOTOR_HEADER_KEYS if k in ov}
-    if header:
+    first = None
+    attempts = [{}] + ([header] if header else [])   # the file's own header first
+    for kwargs in attempts:
         try:
-            return load_motor(spec.file, spec.designation, **header)
+            return load_motor(spec.file, spec.designation, **kwargs)
         except InputError as err:
             if err.field != "header" and err.field not in MOTOR_HEADER_KEYS:
-                raise
+                raise                    # not a missing header number
             first = err
     raise InputError(f"{first.message}; in a rocket file give them in [motor.overrides] "
                      "(dry_mass, propellant_mass [kg] or grains; diameter, length [m])",

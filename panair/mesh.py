@@ -35,9 +35,8 @@ symmetric about the x-z plane with no fin in that plane (e.g. four fins at
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-
 import math
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -185,8 +184,9 @@ class FinGeometry:
     def sharpened(self, wedge: float) -> "FinGeometry":
         """A blunt (square, rounded) leading edge replaced by a wedge ``wedge``
         fin thicknesses long and the blunt trailing edge closed by another (the
-        section becomes a hexagon; neither wedge carries axial force); a round-nosed airfoil likewise, with a sharp trailing
-        edge bevelled over the aft 70 % of the mean chord; other sections
+        section becomes a hexagon; neither wedge carries axial force); a
+        round-nosed airfoil likewise, with a sharp trailing edge bevelled over
+        the aft 70 % of the mean chord; other sections
         unchanged.  The wedge's panels carry no
         axial force: linear supersonic theory cannot solve a blunt edge (it is
         superinclined), so its drag is modelled separately (panair.sweep)."""
@@ -325,7 +325,7 @@ TIP_BT_MAX = 0.93
 TIP_MAX_FRACTION = 0.1
 
 
-def _sharpened_tip(nose_x, x, r, machs) -> list:
+def _sharpened_tip(nose_x, body: BodyGeometry, machs) -> list:
     """Nose stations ``nose_x`` [m] (tip first) without those inside a conical
     tip: the first panel runs from the tip to the first station whose secant
     slope r/(x - x_tip) is shallow enough (B tan(delta) <= ``TIP_BT_MAX``) for the
@@ -342,7 +342,7 @@ def _sharpened_tip(nose_x, x, r, machs) -> list:
     Karman nose, 34 tip panels superinclined at Mach 1.5).  A conical tip is the
     usual modelling of such a nose for linear theory; it changes the surface
     over the first few per cent of the nose only (Andromeda at Mach 1.5: 5.4 %)."""
-    rn = np.interp(nose_x, x, r)
+    rn = body.radius_at(nose_x)
     sec = rn[1:] / np.maximum(nose_x[1:] - nose_x[0], 1e-300)
     limit = nose_x[0] + TIP_MAX_FRACTION * (nose_x[-1] - nose_x[0])
     for mach in sorted((m for m in machs if m > 1.0), reverse=True):
@@ -366,7 +366,7 @@ def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
         s = 0.5 * (1 - np.cos(np.linspace(0, np.pi, n_nose + 1)))
         keep.extend(x[0] + s[1:] * (x_nose - x[0]))
     if len(opt.tip_mach) and len(keep) > 2 and r[0] <= 1e-9 * d:
-        keep = _sharpened_tip(np.array(keep), x, r, opt.tip_mach)
+        keep = _sharpened_tip(np.array(keep), body, opt.tip_mach)
     step = opt.body_spacing * d / opt.refine
     # keep the corners of the profile after the nose (joints, transitions,
     # boattails: where the slope changes), not every station of a dense profile

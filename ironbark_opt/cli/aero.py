@@ -77,15 +77,14 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     from ironbark_opt.vehicle import load_rocket_geometry
     from panair.rocket_table import default_mach_grid, rocket_table
 
-    peak = estimated_peak_mach(rocket) if mach is None else None
-    mach_v = default_mach_grid(peak) if mach is None else _floats(mach, "--mach")
+    mach_v = None if mach is None else _floats(mach, "--mach")
     alpha_v = _floats(alpha_deg, "--alpha-deg")
     if alpha_v[0] != 0.0:
         raise InputError("the first angle must be 0 (the zero-lift drag is read there)",
                          field="--alpha-deg")
     if np.any(alpha_v > 90.0):
         raise InputError("total angles of attack must be within 0..90 deg", field="--alpha-deg")
-    if np.any(mach_v <= 0) or np.any(mach_v > MAX_MACH):
+    if mach_v is not None and (np.any(mach_v <= 0) or np.any(mach_v > MAX_MACH)):
         raise InputError(f"Mach numbers must be in (0, {MAX_MACH:g}]", field="--mach")
     if not 1 <= workers <= MAX_WORKERS:
         raise InputError(f"must be in 1..{MAX_WORKERS}, got {workers}", field="--workers")
@@ -94,6 +93,10 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     if out is not None:
         check_output_path(out, "--out")
     rk, aero_spec = load_rocket_geometry(rocket)
+    # the flight for the grid's reach only once the file is known to be a rocket
+    peak = estimated_peak_mach(rocket) if mach_v is None else None
+    if mach_v is None:
+        mach_v = default_mach_grid(peak)
     sref = rk.reference_area()
     lref = 2.0 * rk.reference_radius()
     if out is None:

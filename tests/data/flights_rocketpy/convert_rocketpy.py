@@ -3,16 +3,25 @@ write the rocket as an Ironbark TOML (geometry only; the team's drag curves are 
 plus its thrust curve as RocketPy flies it.  Data files the notebook names are looked up
 by name in ../shared (reference/rockets, fixtures/motors, fixtures/weather/reanalysis).
 
-Usage: python convert_rocketpy.py NAME NOTEBOOK.ipynb OUT_DIR -
-(the last argument is unused; the motor is always written as OUT_DIR/thrust.csv)."""
-import json, re, sys, os, glob, math, types
+Usage: python convert_rocketpy.py NAME NOTEBOOK.ipynb OUT_DIR
+(writes OUT_DIR/rocket_geometry.toml and OUT_DIR/thrust.csv; the Spaceport America
+flights' pad temperature and pressure were added by hand, see README.md)."""
+import glob
+import json
+import math
+import os
+import re
+import sys
+from pathlib import Path
+
+import matplotlib
 import numpy as np
+
+matplotlib.use("Agg")
+from rocketpy import Environment  # noqa: E402
+
 name, nb_path, out_dir = sys.argv[1], sys.argv[2], sys.argv[3]
 os.makedirs(out_dir, exist_ok=True)
-import matplotlib; matplotlib.use("Agg")
-import rocketpy
-from rocketpy import Environment
-from pathlib import Path
 SHARED = str(Path(__file__).resolve().parents[4] / "shared")
 def resolve(p):
     base = os.path.basename(p)
@@ -38,8 +47,6 @@ for c in nb["cells"]:
     src = re.sub(r"\)\.(draw|info|all_info)\(\)", ")", src)
     lines = [l for l in src.splitlines() if not re.search(r"\.(info|all_info|draw|plots|prints)\b|^%|plt\.|\.plot\(", l)]
     src = "\n".join(lines)
-    if "import" in src:
-        src = src.replace("from rocketpy import", "from rocketpy import")
     try:
         exec(compile(src, "cell", "exec"), ns)
     except Stop:
@@ -103,9 +110,6 @@ cgp = getattr(m, "grains_center_of_mass_position", None)
 if cgp is None:
     cgp = getattr(m, "chamber_position", 0.0)
 mo["propellant_cg"] = float(fwd(cgp))
-thrust_file = None
-for k in ("thrust_source",):
-    pass
 lines = []
 w = lines.append
 w(f"# Converted from RocketPy's docs/examples/{os.path.basename(nb_path)} (RocketPy-Team/RocketPy d41dd11e) by")
@@ -117,17 +121,16 @@ w(f"mass = {rk.mass}"); w(f"cg_x = {X(rk.center_of_mass_without_motor)}"); w(f"I
 for kind_, d in comps:
     w("[[component]]"); w(f'type = "{kind_}"')
     for k, v in d.items():
-        w(f"{k} = {json.dumps(v) if isinstance(v, str) else (v if not isinstance(v, list) else v)}")
+        w(f"{k} = {json.dumps(v) if isinstance(v, str) else v}")
 src_t = np.asarray(m.thrust.source).copy(); src_t[:, 1] = np.maximum(src_t[:, 1], 0.0)
 motor_file = f"{out_dir}/thrust.csv"
 np.savetxt(motor_file, src_t, delimiter=",", fmt="%.6f", header="time_s,thrust_N", comments="")
-notes.append("thrust curve exactly as RocketPy flies it (its Function's points), written as thrust.csv")
+# diameter and length of the grain stack (the flight does not use them: dry inertia given)
 if hasattr(m, "grain_number"):
     mo["diameter"] = 2 * float(m.grain_outer_radius)
     mo["length"] = float(m.grain_number * m.grain_initial_height + (m.grain_number - 1) * m.grain_separation)
 else:
     mo["diameter"] = 2 * float(getattr(m, "chamber_radius", 0.05)); mo["length"] = float(getattr(m, "chamber_height", 0.5))
-notes.append("motor diameter/length from the grains (unused by the flight: dry inertia given)")
 w("[motor]"); w(f'file = "{os.path.basename(motor_file)}"'); w(f"nozzle_x = {nozzle_x}")
 w("[motor.overrides]")
 for k, v in mo.items(): w(f"{k} = {v}")
@@ -138,11 +141,9 @@ if hasattr(m, "grain_number"):
 w("[launch]")
 atm = rec.get("atm", {})
 if atm.get("file") and os.path.exists(atm["file"]):
-    d = env.datetime_date if hasattr(env, "datetime_date") else None
     w(f'atmosphere = {{file = "../../weather/reanalysis/{os.path.basename(atm["file"])}", time = "{env.datetime_date.strftime("%Y-%m-%dT%H:%MZ")}"}}')
 w(f"gravity = 9.80665")
 w(f"rail_length = {fk['rail_length']}"); w(f"inclination_deg = {fk.get('inclination', 80)}"); w(f"heading_deg = {fk.get('heading', 90)}")
 w(f"site_elevation = {env.elevation}"); w(f"latitude_deg = {env.latitude}"); w(f"longitude_deg = {env.longitude}")
 open(f"{out_dir}/rocket_geometry.toml", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
-print("thrust:", getattr(m, "thrust_source", None) if hasattr(m, "thrust_source") else None, file=sys.stderr)
