@@ -36,13 +36,12 @@ SHARED = ("ballast_kg", "ballast_x_m", "ballast_feasible", "target_agl_m", "laun
 
 
 def fly_members(setup, forecast: str, when, where, members, *, target=None, band=50.0, spec=None, samples=200,
-                seed=None, ballast_options=None, limits=None, min_go_fraction: float = 1.0,
-                objects: dict | None = None) -> tuple[dict, object]:
+                seed=None, ballast_options=None, limits=None,
+                min_go_fraction: float = 1.0) -> tuple[dict, object]:
     """Fly every member of one hour: ``(hour row, ProfileColumns of the first member)``.
 
     The first member must have a forecast (else its InputError/NetworkError is raised: the hour
-    has none); a later member without one is listed with its ``error`` and not counted.
-    ``objects`` receives the first member's flight objects (see ``fly_hour``)."""
+    has none); a later member without one is listed with its ``error`` and not counted."""
     from ironbark_opt.analysis.window import WindowLimits, fly_hour
     from ironbark_opt.atmosphere.forecast import setup_with_forecast
 
@@ -63,8 +62,6 @@ def fly_members(setup, forecast: str, when, where, members, *, target=None, band
                             ballast_options=ballast_options, limits=limits, ballast=ballast, objects=got))
         if columns0 is None:
             columns0 = columns
-            if objects is not None:
-                objects.update(got)
             if target is not None:
                 ballast = (row["ballast_kg"], row["ballast_x_m"])
         if "dispersion" in got:

@@ -217,7 +217,7 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
               "nominal_ballast_x_m": nv["ballast_x_m"], "target_agl_m": target_agl, "band_m": float(band),
               "kernel_width_m": width, "saa_gain_t": t_gain,
               "saa_optimum_ballast_kg": float(w_saa[0]),
-              "saa_optimum_ballast_x_m": float(w_saa[1]) if free_position else x_nom,
+              "saa_optimum_ballast_x_m": x_saa,
               "saa_smoothed_objective": smoothed_objective(a_rob, target_agl, objective, band, width)[0],
               "saa_nominal_smoothed_objective": smoothed_objective(a_nom, target_agl, objective, band, width)[0],
               "saa_probability_in_band": float(np.mean(np.abs(a_rob - target_agl) <= band)),
