@@ -389,20 +389,20 @@ def dense_to_csc(A, order):
 
 
 def warm_up():
-    """Compile (or load from the on-disk cache) both kernels on a one-panel case, so
+    """Compile (or load from the on-disk cache) the kernels the solvers call (subsonic
+    influence, the supersonic source pair, the causal CSC) on a one-panel case, so
     worker processes forked afterwards inherit the machine code [s spent returned]."""
     import time
     t0 = time.perf_counter()
     if HAVE_NUMBA:
         from .influence import influence_matrices
-        from .supersonic_influence import source_potential, source_potential_pair
+        from .supersonic_influence import source_potential_pair
         flat = np.array([[[0.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0]]])
         nrm = np.array([[0.0, 0.0, 1.0]])
         influence_matrices(np.array([[0.5, 0.5, 1.0]]), flat, nrm, backend="compiled")
         flat_s = np.array([[[0.0, 0.0, 0.0], [0.0, 1.0, 0.1], [1.0, 1.0, 0.1], [1.0, 0.0, 0.0]]])
         nrm_s = np.array([[0.1, -0.1, 0.99]]) / np.linalg.norm([0.1, -0.1, 0.99])
         pt = np.array([[3.0, 0.5, 0.5]])
-        source_potential(pt, flat_s, nrm_s, backend="compiled")
         source_potential_pair(pt, pt, flat_s, nrm_s, mirror=True, backend="compiled")
         dense_to_csc(np.eye(2), np.arange(2))
     return time.perf_counter() - t0
