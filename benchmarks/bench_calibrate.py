@@ -28,7 +28,7 @@ from ironbark_opt.telemetry.compare import compare_flight  # noqa: E402
 from ironbark_opt.vehicle import load_setup  # noqa: E402
 
 ORK = ROOT / "tests/data/telemetry/nustars-2026-ft1-telemega.ork"
-SHARED = Path("/work/shared/fixtures/telemetry/altos/nustars-2026-ft1-telemega.csv")
+SHARED = ROOT.parent / "shared" / "fixtures" / "telemetry" / "altos" / "nustars-2026-ft1-telemega.csv"
 LOG = SHARED if SHARED.exists() else ROOT / "tests/data/telemetry/nustars-2026-ft1-telemega.csv.gz"
 
 

@@ -47,9 +47,11 @@ def test_flights_fly_their_weather_file_and_gravity():
 
 
 def test_cut_ndrt_file_matches_the_full_one():
-    full = Path("/work/shared/fixtures/weather/reanalysis/ndrt_2020_weather_data_ERA5_new.nc")
+    # ../shared beside the checkout (as tests/unit/test_motor_files.py), not a fixed path
+    full = (Path(__file__).resolve().parents[3] / "shared" / "fixtures" / "weather" / "reanalysis"
+            / "ndrt_2020_weather_data_ERA5_new.nc")
     if not full.exists():
-        pytest.skip("full ndrt reanalysis file not present")
+        pytest.skip("full ndrt reanalysis file not present (../shared is not beside this checkout)")
     pytest.importorskip("h5py")
     from ironbark_opt.atmosphere.reanalysis import read_reanalysis
     kw = dict(latitude=math.radians(41.775447), longitude=math.radians(-86.572467), ground_elevation=206.0)
