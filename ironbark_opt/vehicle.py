@@ -95,7 +95,8 @@ def load_aero_table(aero_spec, rocket):
     if aero_spec.drag_power_off is not None:
         return from_cd_mach_csv(aero_spec.drag_power_off, aero_spec.drag_power_on,
                                 reference_area=rocket.reference_area(),
-                                reference_length=2 * rocket.reference_radius())
+                                reference_length=2 * rocket.reference_radius(),
+                                duplicates=aero_spec.drag_duplicates)
     # No aerodynamic input: the empirical pressure/wave-drag estimate from the
     # geometry (friction and base drag are added by the aero model); build a
     # panel-method table with 'ironbark aero build' for the better model.

@@ -165,8 +165,9 @@ def _merge_sorted(mach, values, lines, path, duplicates, field):
             if duplicates == "error":
                 raise InputError(f"Mach {mach[i]:.10g} appears on lines {lines[i]} and "
                                  f"{lines[i + 1]} with different values {group[0]:.10g} and "
-                                 f"{group[1]:.10g}; pass "
-                                 f"duplicates='mean' to average repeated Mach values",
+                                 f"{group[1]:.10g}; to average repeated Mach values set "
+                                 f"drag_duplicates = \"mean\" in the rocket file's [aero] "
+                                 f"(Python: duplicates='mean')",
                                  source=path, line=lines[i + 1], field=field)
         out_m.append(mach[i])
         out_v.append(float(np.mean(group)))

@@ -92,6 +92,9 @@ class AeroSpec:
     drag_power_off, drag_power_on : Path or None
         (Mach, Cd) curves on the rocket's reference area; power-on is used
         while the motor burns.
+    drag_duplicates : {"error", "mean"}
+        What a Mach number repeated in a drag curve with different values
+        means: an error (default) or their average.
     surface_roughness : float [m]
         Equivalent sand-grain roughness (default regular paint, 60 um).
     re_transition : float [-]
@@ -101,6 +104,7 @@ class AeroSpec:
     table: Path | None = None
     drag_power_off: Path | None = None
     drag_power_on: Path | None = None
+    drag_duplicates: str = "error"
     surface_roughness: float = DEFAULT_ROUGHNESS
     re_transition: float = 5e5
 
@@ -109,6 +113,9 @@ class AeroSpec:
             val = getattr(self, name)
             if val is not None:
                 object.__setattr__(self, name, Path(val))
+        if self.drag_duplicates not in ("error", "mean"):
+            raise InputError(f"expected \"error\" or \"mean\", got {self.drag_duplicates!r}",
+                             field="drag_duplicates")
         object.__setattr__(self, "surface_roughness",
                            v.nonnegative(self.surface_roughness, "surface_roughness"))
         object.__setattr__(self, "re_transition",

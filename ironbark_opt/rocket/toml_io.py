@@ -30,7 +30,8 @@ MAX_MAGNITUDE = 1e9
 
 TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart",
             "stage")
-STAGE_KEYS = ("file", "name", "separation_delay", "table", "drag_power_off", "drag_power_on")
+STAGE_KEYS = ("file", "name", "separation_delay", "table", "drag_power_off", "drag_power_on",
+              "drag_duplicates")
 ROCKET_KEYS = ("name", "reference_radius", "mass_override")
 OVERRIDE_KEYS = ("mass", "cg_x", "I_transverse", "I_axial", "inertia", "includes_motor")
 _BODY = ("type", "name", "x", "length", "thickness", "filled", "material", "density", "mass",
@@ -66,8 +67,8 @@ REQUIRED_KEYS = {
 }
 MOTOR_KEYS = ("file", "designation", "nozzle_x", "overrides", "kind", "ignition_time", "grain", "tank",
               "ejection_delay")
-AERO_KEYS = ("table", "drag_power_off", "drag_power_on", "surface_roughness", "finish",
-             "re_transition")
+AERO_KEYS = ("table", "drag_power_off", "drag_power_on", "drag_duplicates", "surface_roughness",
+             "finish", "re_transition")
 LAUNCH_KEYS = ("rail_length", "inclination_deg", "heading_deg", "site_elevation",
                "latitude_deg", "longitude_deg", "site_temperature", "site_pressure",
                "wind_speed", "wind_from_deg", "atmosphere", "gravity")
@@ -319,6 +320,8 @@ def _read_stages(rd: _Reader, items) -> tuple:
         if not isinstance(name, str):
             raise rd.error(f"expected a string, got {name!r}", "stage", "name", i, field=f"{label}.name")
         aero = {k: rd.file(d, k, "stage") for k in ("table", "drag_power_off", "drag_power_on") if k in d}
+        if "drag_duplicates" in d:
+            aero["drag_duplicates"] = _drag_duplicates(rd, d, "stage", i, label)
         out.append(StageSpec(file=file, separation_delay=delay, name=name, aero=aero or None))
     return tuple(out)
 
@@ -608,6 +611,8 @@ def _read_motor_kind(rd: _Reader, d, ov):
 def _read_aero(rd: _Reader, d):
     rd.check_keys(d, AERO_KEYS, "aero")
     kw = {k: rd.file(d, k, "aero") for k in ("table", "drag_power_off", "drag_power_on")}
+    if "drag_duplicates" in d:
+        kw["drag_duplicates"] = _drag_duplicates(rd, d, "aero")
     if "finish" in d:
         if "surface_roughness" in d:
             raise rd.error("give finish or surface_roughness, not both", "aero", "finish")
@@ -622,6 +627,15 @@ def _read_aero(rd: _Reader, d):
         return AeroSpec(**kw)
     except InputError as exc:
         raise rd.wrap(exc, "aero", 0, "aero") from None
+
+
+def _drag_duplicates(rd: _Reader, d, table, occ=0, label=None):
+    """``drag_duplicates``: what a repeated Mach number in a drag curve means."""
+    val = d["drag_duplicates"]
+    if val not in ("error", "mean"):
+        raise rd.error(f'expected "error" or "mean", got {val!r}', table, "drag_duplicates", occ,
+                       field=f"{label or table}.drag_duplicates")
+    return val
 
 
 def _read_launch(rd: _Reader, d):

@@ -56,7 +56,7 @@ def test_repeated_mach_values(tmp_path):
     np.testing.assert_allclose(t.mach, [0.1, 0.2, 0.3])
     with pytest.raises(InputError, match="Mach 0.011 appears on lines 1 and 2") as err:
         from_cd_mach_csv(DATA / "cavour_power_on.csv", **REF)
-    assert err.value.line == 2 and "duplicates='mean'" in str(err.value)
+    assert err.value.line == 2 and "duplicates='mean'" in str(err.value) and 'drag_duplicates = "mean"' in str(err.value)
     t = from_cd_mach_csv(DATA / "cavour_power_on.csv", duplicates="mean", **REF)
     raw = np.loadtxt(DATA / "cavour_power_on.csv", delimiter=",")
     m0 = raw[0, 0]

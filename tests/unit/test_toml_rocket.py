@@ -316,3 +316,36 @@ def test_thrust_table_csv_from_a_rocket_file_names_the_override_keys(tmp_path):
                               "propellant_mass = 1.2\ndiameter = 0.054\nlength = 0.4\n"))
     m = load_motor_for(load_rocket_toml(p).motor)
     assert m.total_impulse == pytest.approx(0.5 * 0.1 * 1000 * 2 + 1.9 * 1000, rel=1e-9)
+
+
+def test_drag_duplicates_key(tmp_path):
+    """A team curve with a Mach number repeated at different Cd (RocketPy's Cavour
+    curve) is refused naming the TOML key, flies averaged with
+    ``drag_duplicates = "mean"``, and a bad value names its line."""
+    import numpy as np
+    from ironbark_opt.vehicle import load_aero_table
+
+    def load_setup(path):
+        f = load_rocket_toml(path)
+        return load_aero_table(f.aero, f.rocket)
+    curve = ROOT / "tests" / "data" / "aero" / "cavour_power_on.csv"
+    shutil.copy(curve, tmp_path / "dup.csv")
+    for name in ("Cesaroni_M1670.eng",):
+        shutil.copy(CALISTO.parent / name, tmp_path / name)
+    text = CALISTO.read_text().replace('drag_power_off = "powerOffDragCurve.csv"',
+                                       'drag_power_off = "dup.csv"')
+    text = text.replace('drag_power_on = "powerOnDragCurve.csv"', 'drag_power_on = "dup.csv"')
+    (tmp_path / "r.toml").write_text(text)
+    with pytest.raises(InputError, match='drag_duplicates = "mean"') as err:
+        load_setup(tmp_path / "r.toml")
+    assert Path(err.value.source).name == "dup.csv" and err.value.line == 2
+    (tmp_path / "m.toml").write_text(text.replace("[aero]\n", '[aero]\ndrag_duplicates = "mean"\n'))
+    table = load_setup(tmp_path / "m.toml")
+    raw = np.loadtxt(curve, delimiter=",")
+    m0 = raw[0, 0]
+    assert table.evaluate("CA", m0, 0.0) == pytest.approx(raw[raw[:, 0] == m0, 1].mean(), rel=1e-12)
+    bad = text.replace("[aero]\n", '[aero]\ndrag_duplicates = "average"\n')
+    line = bad.splitlines().index('drag_duplicates = "average"') + 1
+    with pytest.raises(InputError, match='expected "error" or "mean"') as err:
+        loads_rocket_toml(bad, tmp_path / "b.toml")
+    assert err.value.line == line and err.value.field == "aero.drag_duplicates"

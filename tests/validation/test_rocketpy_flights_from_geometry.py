@@ -23,14 +23,34 @@ RECORDED = {"cavour": (2789.0, 2806.0), "andromeda": (3443.0, 3614.95),
             "juno3": (3213.0, 3026.054), "prometheus": (3898.37, 4190.05)}
 
 
+def _team_curve_apogee(name, tmp_path):
+    """The same flight in our simulator on the team's own drag curve (copied from
+    ../shared/reference/rockets as team_drag_power_off/on.csv; one file = both), or None
+    where the team published none we read (prometheus: none; andromeda: its curve is a
+    flight export whose Mach number falls back, which the reader refuses)."""
+    from ironbark_opt import load_setup, simulate
+    off = DATA / name / "team_drag_power_off.csv"
+    if not off.exists():
+        return None
+    on = DATA / name / "team_drag_power_on.csv"
+    text = (DATA / name / "rocket_geometry.toml").read_text()
+    text = text.replace('file = "thrust.csv"', f'file = "{(DATA / name / "thrust.csv").as_posix()}"')
+    text = text.replace('file = "../../weather/', f'file = "{(DATA.parent / "weather").as_posix()}/')
+    text += ('\n[aero]\ndrag_duplicates = "mean"\n'
+             f'drag_power_off = "{off.as_posix()}"\ndrag_power_on = "{(on if on.exists() else off).as_posix()}"\n')
+    path = tmp_path / f"{name}_team.toml"
+    path.write_text(text)
+    return simulate(load_setup(path)).summary_values["apogee_agl_m"]
+
+
 @pytest.mark.slow
 def test_rocketpy_example_flights_on_tables_from_geometry(tmp_path):
     from ironbark_opt import load_setup, simulate
     from ironbark_opt.vehicle import load_rocket_geometry
     from panair.rocket_table import rocket_table
     errs, team_errs = [], []
-    print("\nflight       recorded  geometry table  err %   team pre-flight  err %   max Mach"
-          "   local-inclination Mach")
+    print("\nflight       recorded  geometry table  err %   team pre-flight  err %   "
+          "team curve, ours  err %   max Mach   local-inclination Mach")
     for name, (rec, team) in RECORDED.items():
         geo = DATA / name / "rocket_geometry.toml"
         rk, spec = load_rocket_geometry(geo)
@@ -40,8 +60,10 @@ def test_rocketpy_example_flights_on_tables_from_geometry(tmp_path):
         e, et = 100 * (fl["apogee_agl_m"] / rec - 1), 100 * (team / rec - 1)
         errs.append(abs(e))
         team_errs.append(abs(et))
+        curve = _team_curve_apogee(name, tmp_path)
+        curve_txt = f"{curve:12.1f} {100 * (curve / rec - 1):+9.2f}" if curve else f"{'-':>12s} {'-':>9s}"
         print(f"{name:11s} {rec:9.1f} {fl['apogee_agl_m']:12.1f} {e:+8.2f} {team:12.1f} {et:+9.2f}"
-              f" {fl['max_mach']:9.3f}   {table.metadata['mach_local_inclination']}")
+              f"    {curve_txt} {fl['max_mach']:9.3f}   {table.metadata['mach_local_inclination']}")
     print(f"median |error| {np.median(errs):.2f} % (teams' own: {np.median(team_errs):.2f} %), "
           f"max {np.max(errs):.2f} % (teams' own: {np.max(team_errs):.2f} %)")
     # measured (session 7): cavour -0.79, andromeda +3.75, erebus -5.69, lince +4.24,
