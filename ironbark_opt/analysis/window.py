@@ -254,9 +254,9 @@ def launch_window(setup, forecast: str, site, start, hours: int, *, step_hours: 
     LaunchWindow
     """
     from ironbark_opt.analysis.distributions import DispersionSpec, load_spec
-    from ironbark_opt.analysis.window_ensemble import fly_members
+    from ironbark_opt.analysis.window_ensemble import fetch_members, fly_members
     from ironbark_opt.atmosphere.forecast import ENSEMBLES, gefs_members, setup_with_forecast
-    from ironbark_opt.atmosphere.ncss import parse_iso
+    from ironbark_opt.atmosphere.ncss import parse_iso, reuse_dataset_info
     from ironbark_opt.atmosphere.sites import get_site
 
     if forecast not in ENSEMBLES and members is not None:
@@ -275,41 +275,41 @@ def launch_window(setup, forecast: str, site, start, hours: int, *, step_hours: 
         spec = load_spec(spec)
     if spec is not None and seed is None:
         seed = spec.seed if spec.seed is not None else 0
-    flown_members = gefs_members(members) if forecast in ENSEMBLES else ()
-    rows, network_errors = [], []
-    for k in range(int(hours)):
-        when = t0 + timedelta(hours=k * int(step_hours))
-        stamp = when.strftime("%Y-%m-%dT%H:%M:%SZ")
-        try:
-            if flown_members:
-                ens_row, columns = fly_members(setup, forecast, when, where, flown_members, target=target,
-                                               band=band, spec=spec, samples=samples, seed=seed,
-                                               ballast_options=ballast_options, limits=limits,
-                                               min_go_fraction=min_go_fraction)
-                hour_setup = None
+    with reuse_dataset_info():          # one dataset.xml per collection for the whole window
+        flown_members = gefs_members(members) if forecast in ENSEMBLES else ()
+        rows, network_errors = [], []
+        for k in range(int(hours)):
+            when = t0 + timedelta(hours=k * int(step_hours))
+            stamp = when.strftime("%Y-%m-%dT%H:%M:%SZ")
+            try:                          # only the forecast's absence makes an hour an error row
+                if flown_members:
+                    fetched = fetch_members(setup, forecast, when, where, flown_members)
+                    hour_setup, columns = None, fetched[0][2]
+                else:
+                    hour_setup, columns = setup_with_forecast(setup, forecast, when, where)
+            except (InputError, NetworkError) as err:
+                if isinstance(err, NetworkError):
+                    network_errors.append(err)
+                rows.append({"time_utc": stamp, "hour_offset_h": float(k * step_hours), "error": str(err)})
+                if progress:
+                    progress(k, rows[-1])
+                continue
+            row = {"time_utc": stamp, "hour_offset_h": float(k * step_hours),
+                   "valid_time_utc": None if columns.valid_time is None else columns.valid_time.strftime(
+                       "%Y-%m-%dT%H:%M:%SZ"),
+                   "site_elevation_m": float(hour_setup.site_elevation if hour_setup is not None else
+                                             where.elevation if columns.ground_elevation is None else
+                                             columns.ground_elevation), "atmosphere": columns.source}
+            if hour_setup is None:
+                row.update(fly_members(fetched, target=target, band=band, spec=spec, samples=samples, seed=seed,
+                                       ballast_options=ballast_options, limits=limits,
+                                       min_go_fraction=min_go_fraction)[0])
             else:
-                hour_setup, columns = setup_with_forecast(setup, forecast, when, where)
-        except (InputError, NetworkError) as err:
-            if isinstance(err, NetworkError):
-                network_errors.append(err)
-            rows.append({"time_utc": stamp, "hour_offset_h": float(k * step_hours), "error": str(err)})
+                row.update(fly_hour(hour_setup, target=target, band=band, spec=spec, samples=samples,
+                                    seed=seed, ballast_options=ballast_options, limits=limits))
+            rows.append(row)
             if progress:
-                progress(k, rows[-1])
-            continue
-        row = {"time_utc": stamp, "hour_offset_h": float(k * step_hours),
-               "valid_time_utc": None if columns.valid_time is None else columns.valid_time.strftime(
-                   "%Y-%m-%dT%H:%M:%SZ"),
-               "site_elevation_m": float(hour_setup.site_elevation if hour_setup is not None else
-                                         where.elevation if columns.ground_elevation is None else
-                                         columns.ground_elevation), "atmosphere": columns.source}
-        if hour_setup is None:
-            row.update(ens_row)
-        else:
-            row.update(fly_hour(hour_setup, target=target, band=band, spec=spec, samples=samples, seed=seed,
-                                ballast_options=ballast_options, limits=limits))
-        rows.append(row)
-        if progress:
-            progress(k, row)
+                progress(k, row)
     if not any("error" not in r for r in rows):
         text = f"no forecast for any of the {hours} hours; first: {rows[0]['error']}"
         raise NetworkError(text) if network_errors else InputError(text, field="--from")

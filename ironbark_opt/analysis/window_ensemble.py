@@ -35,26 +35,40 @@ SPREAD = {"apogee_agl_m": ("apogee_p05_agl_m", "apogee_p95_agl_m"),
 SHARED = ("ballast_kg", "ballast_x_m", "ballast_feasible", "target_agl_m", "launch_mass_kg")
 
 
-def fly_members(setup, forecast: str, when, where, members, *, target=None, band=50.0, spec=None, samples=200,
-                seed=None, ballast_options=None, limits=None,
-                min_go_fraction: float = 1.0) -> tuple[dict, object]:
-    """Fly every member of one hour: ``(hour row, ProfileColumns of the first member)``.
+def fetch_members(setup, forecast: str, when, where, members) -> list:
+    """Every member's atmosphere for one hour: ``(member, setup, ProfileColumns)`` per member, or
+    ``{"member", "error"}`` for a later member without a forecast (listed, not counted).
 
     The first member must have a forecast (else its InputError/NetworkError is raised: the hour
-    has none); a later member without one is listed with its ``error`` and not counted."""
-    from ironbark_opt.analysis.window import WindowLimits, fly_hour
+    has none).  Only fetching is caught here; the flights (:func:`fly_members`) are not, so a
+    flight's own error (e.g. a target below the site) is raised as on a deterministic hour."""
     from ironbark_opt.atmosphere.forecast import setup_with_forecast
 
-    limits = WindowLimits() if limits is None else limits
-    rows, columns0, ballast, pooled = [], None, None, []
+    out = []
     for m in members:
         try:
             m_setup, columns = setup_with_forecast(setup, forecast, when, where, member=m)
         except (InputError, NetworkError) as err:
-            if columns0 is None:
+            if not out:
                 raise
-            rows.append({"member": m, "error": str(err)})
+            out.append({"member": m, "error": str(err)})
             continue
+        out.append((m, m_setup, columns))
+    return out
+
+
+def fly_members(fetched, *, target=None, band=50.0, spec=None, samples=200, seed=None, ballast_options=None,
+                limits=None, min_go_fraction: float = 1.0) -> tuple[dict, object]:
+    """Fly every member :func:`fetch_members` returned: ``(hour row, ProfileColumns of the first member)``."""
+    from ironbark_opt.analysis.window import WindowLimits, fly_hour
+
+    limits = WindowLimits() if limits is None else limits
+    rows, columns0, ballast, pooled = [], None, None, []
+    for item in fetched:
+        if isinstance(item, dict):
+            rows.append(item)
+            continue
+        m, m_setup, columns = item
         got: dict = {}
         row = {"member": m, "valid_time_utc": None if columns.valid_time is None else
                columns.valid_time.strftime("%Y-%m-%dT%H:%M:%SZ"), "atmosphere": columns.source}

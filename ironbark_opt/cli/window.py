@@ -89,25 +89,28 @@ def window_command(rocket, forecast, site, start, hours, step_hours, target, ban
         if not as_json and "error" not in row:
             click.echo(f"  {row['time_utc']}: flown, {'go' if row['go'] else 'no-go'}", err=True)
 
-    result = launch_window(setup, forecast, where, t0, hours, step_hours=step_hours, target=target, band=band,
-                           spec=spec, samples=samples, seed=seed, limits=limits,
-                           ballast_options={"mass_max": max_ballast, "ballast_x": ballast_x},
-                           progress=progress, members=members, min_go_fraction=min_go_fraction)
-    if plot_path:
-        atomic_write(plot_path, lambda tmp: plot_window(result, tmp))
-    out = result.to_dict()
-    text = result.summary()
-    if card_path:
-        import matplotlib
-        matplotlib.use("Agg")
-        from ironbark_opt.analysis.window import window_card
-        from ironbark_opt.report.card import write_flight_card
-        card, row = window_card(setup, result, forecast, where, hour=card_hour, target=target, band=band,
-                                spec=spec, samples=samples, seed=seed, limits=limits,
-                                ballast_options={"mass_max": max_ballast, "ballast_x": ballast_x})
-        atomic_write(card_path, lambda tmp: write_flight_card(tmp, card))
-        out["flight_card"] = {"time_utc": row["time_utc"], **card.to_dict()}
-        text += f"\nflight card of {row['time_utc']}: {card_path}"
+    from ironbark_opt.atmosphere.ncss import reuse_dataset_info
+
+    with reuse_dataset_info():      # the window and its card ask the same collection
+        result = launch_window(setup, forecast, where, t0, hours, step_hours=step_hours, target=target, band=band,
+                               spec=spec, samples=samples, seed=seed, limits=limits,
+                               ballast_options={"mass_max": max_ballast, "ballast_x": ballast_x},
+                               progress=progress, members=members, min_go_fraction=min_go_fraction)
+        if plot_path:
+            atomic_write(plot_path, lambda tmp: plot_window(result, tmp))
+        out = result.to_dict()
+        text = result.summary()
+        if card_path:
+            import matplotlib
+            matplotlib.use("Agg")
+            from ironbark_opt.analysis.window import window_card
+            from ironbark_opt.report.card import write_flight_card
+            card, row = window_card(setup, result, forecast, where, hour=card_hour, target=target, band=band,
+                                    spec=spec, samples=samples, seed=seed, limits=limits,
+                                    ballast_options={"mass_max": max_ballast, "ballast_x": ballast_x})
+            atomic_write(card_path, lambda tmp: write_flight_card(tmp, card))
+            out["flight_card"] = {"time_utc": row["time_utc"], **card.to_dict()}
+            text += f"\nflight card of {row['time_utc']}: {card_path}"
     emit(out, as_json, text)
 
 

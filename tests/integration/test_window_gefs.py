@@ -101,6 +101,7 @@ def test_gefs_window_members_table_plot_card(thredds, tmp_path, monkeypatch):
                                            "--max-rail-wind", str(MAX_RAIL_WIND), "--min-go-fraction", "0.6",
                                            "--plot", str(plot), "--card", str(card), "--json"))
     assert res.exit_code == 0, res.output
+    n_first = len(thredds.requests)
     data = json.loads(res.output)
     assert data["ensemble_members"] == 3 and data["members"] == [0, 1, 2]
     hours = data["hours"]
@@ -152,6 +153,9 @@ def test_gefs_window_members_table_plot_card(thredds, tmp_path, monkeypatch):
         assert ens[key] == pytest.approx(first_go[key]), key
     assert any(f"{ens['apogee_p95_agl_m']:.1f}" in line for line in fc["lines"])
     assert ens["landing_east_m"] == pytest.approx([m["landing_east_m"] for m in first_go["members"]])
+    # the collection's description is fetched once for the whole window, not per hour and member
+    # (it was 1 + 12 hours x 3 members = 37 requests)
+    assert sum(r["path"].endswith("/dataset.xml") for r in thredds.requests[:n_first]) == 1
     # second run: offline, every member of the hours from the cache
     n = len(thredds.requests)
     monkeypatch.setenv("IRONBARK_OFFLINE", "1")
@@ -161,6 +165,15 @@ def test_gefs_window_members_table_plot_card(thredds, tmp_path, monkeypatch):
     again = json.loads(res2.output)["hours"]
     assert [m["rail_exit_wind_mps"] for m in again[1]["members"]] == pytest.approx(
         [m["rail_exit_wind_mps"] for m in hours[1]["members"]])
+
+
+def test_gefs_flight_error_is_not_a_missing_forecast(thredds):
+    """A flight's own error (a target below the site) stops the command as on a deterministic
+    hour (exit 2, that message); it used to turn every hour into "no forecast"."""
+    res = CliRunner().invoke(main, _window("--members", "2", "--target", "1000m ASL", hours=2))
+    assert res.exit_code == 2, res.output
+    line = res.stderr.strip().splitlines()[-1]
+    assert line.startswith("error:") and "below the launch site" in line and "no forecast" not in line
 
 
 def test_gefs_bad_member_count_and_deterministic_members(thredds):
