@@ -200,8 +200,8 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     # Initial guess: interpolate between the bracketing flights.
     frac = (a_lo - target_agl) / (a_lo - a_hi)
     guess = fly(frac * m_max)
-    if method == "auto" and not free_position and min_rail_speed is None and min_margin is None \
-            and not ipopt_options:
+    if solved_by_root(free_position=free_position, min_rail_speed=min_rail_speed, min_margin=min_margin,
+                      ipopt_options=ipopt_options, method=method):
         m_opt, run, n_it = _mass_root(fly, target_agl, (0.0, lo), (m_max, hi), (frac * m_max, guess))
         return _solution(setup, model, p_nom, m_opt, p_nom[i_x], run, target_agl, True, "solved", (), t_start,
                          common, iterations=n_it, zero_ballast_apogee=a_lo)
@@ -245,6 +245,15 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     return _solution(setup, model, p_nom, m_opt, x_opt, run, target_agl, feasible,
                      "solved" if feasible else status, tuple(active), t_start, common,
                      iterations=stats.get("iter_count"), zero_ballast_apogee=a_lo)
+
+
+def solved_by_root(*, free_position: bool = False, min_rail_speed=None, min_margin=None, ipopt_options=None,
+                   method: str = "auto", **_) -> bool:
+    """Whether :func:`solve_ballast` with these options solves the one-variable root
+    on :meth:`FlightModel.run`'s apogee (:func:`_mass_root`) rather than the NLP
+    (other keywords of ``solve_ballast`` are accepted and do not matter)."""
+    return method == "auto" and not free_position and min_rail_speed is None and min_margin is None \
+        and not ipopt_options
 
 
 #: apogee error at which the one-variable root is accepted [m] (IPOPT's constr_viol_tol)
