@@ -111,6 +111,8 @@ class SampleApogees:
         self.free_position = free_position
         self.func = compiled_derivative_function(model, free_position).map(self.n, "thread", 2)
         self.evaluations = 0
+        # ejection times [s] of the samples (burnout + delay: independent of the ballast)
+        self._t_ejection = ejection.ejection_time(model.setup, self.P)
         self._seen: dict = {}
         self._fallback: dict = {}
 
@@ -134,11 +136,7 @@ class SampleApogees:
         ev, out, J = (np.array(v) for v in self.func(w, self.P))
         self.evaluations += 1
         J = J.reshape(len(OUTPUTS), self.n, self.k).transpose(0, 2, 1)          # 3 x k x N
-        P = self.P.copy()
-        P[params.index("ballast_mass")] = w[0]
-        if self.free_position:
-            P[params.index("ballast_x")] = w[1]
-        t_e = ejection.ejection_time(self.model.setup, P)
+        t_e = self._t_ejection
         t_apo = dict(zip(EV, ev))["t_k"] + dict(zip(EV, ev))["h"]
         redo = ~applies(ev) | ((t_e < t_apo) if t_e is not None else False)
         if np.any(redo):                   # the phase formulation for those samples
