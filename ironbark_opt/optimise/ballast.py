@@ -21,7 +21,6 @@ the constraints and reports the closest feasible apogee.
 """
 from __future__ import annotations
 
-import hashlib
 import time
 from dataclasses import dataclass, field
 from typing import Mapping
@@ -32,6 +31,7 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics.integrator import cached_library, compile_detached, compile_function
 from ironbark_opt.dynamics.model import _final_state
+from ironbark_opt.dynamics.model_cache import library_key
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import InputError
 from ironbark_opt.flight import flight_model, flight_of_run
@@ -310,9 +310,7 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
         return cache[key]
     rail_variable = _rail_variable(model)
     name = _nlp_name(free_position, rail_speed, margin)
-    key_c = None
-    if rail_variable and model._key is not None:
-        key_c = hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
+    key_c = library_key(model, name) if rail_variable else None
     names = [n for n, on in (("rail_exit_speed_mps >= minimum", rail_speed),
                              ("static_margin_rail_exit_cal >= minimum", margin)) if on]
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",

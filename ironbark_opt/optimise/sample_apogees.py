@@ -25,13 +25,12 @@ Numeric-only.
 """
 from __future__ import annotations
 
-import hashlib
-
 import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
 from ironbark_opt.dynamics import ejection
+from ironbark_opt.dynamics.model_cache import library_key
 from ironbark_opt.errors import InputError
 
 #: rows of the ``out`` output of :func:`ascent_derivative_function`
@@ -63,12 +62,6 @@ def ascent_derivative_function(model, free_position: bool) -> ca.Function:
                        ["w", "p"], ["ev", "out", "J"])
 
 
-def _library_key(model, name: str) -> str | None:
-    if model._key is None:
-        return None
-    return hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
-
-
 def compiled_derivative_function(model, free_position: bool) -> ca.Function:
     """:func:`ascent_derivative_function` as ``model.jit`` asks, cached on the model: the
     compiled library when the disk cache has it; else ``jit=True`` compiles it now and
@@ -80,7 +73,7 @@ def compiled_derivative_function(model, free_position: bool) -> ca.Function:
     slot = ("ascent", free_position, model.discretisation())
     if slot not in cache:
         k = 2 if free_position else 1
-        key = _library_key(model, f"robust_ascent_{k}")
+        key = library_key(model, f"robust_ascent_{k}")
         func = cached_library(f"robust_ascent_{k}", key) if model.jit and key is not None else None
         if func is None:
             func = ascent_derivative_function(model, free_position)
