@@ -16,8 +16,9 @@ With a ``target``, the ballast that hits it is solved first, as ``ballast``
 solves it (:func:`ironbark_opt.optimise.ballast.solve_ballast`), and the
 sensitivities are taken at that optimum, together with the parametric
 sensitivity of the optimal ballast itself, on the apogee that solve put on
-the target (``run``'s for the one-variable root; the NLP's with flight
-constraints or a free position).  At the optimum the apogee constraint
+the target: ``run``'s for the one-variable root, as ``ballast`` solves it;
+with flight constraints, a free position, a staged rocket or an ejection
+before apogee the NLP solves it and its formulation is differentiated.  At the optimum the apogee constraint
 ``z(m*, p) = target`` holds, so by the implicit-function theorem (Fiacco,
 *Introduction to Sensitivity and Stability Analysis in Nonlinear
 Programming*, Academic Press 1983, ch. 3, the basic sensitivity theorem,
@@ -302,12 +303,16 @@ def sensitivities(setup, *, parameters: Mapping[str, float] | None = None, names
     p0 = setup.nominal_parameters(**dict(parameters or {}))
     note, target_agl, solution, flown = "at the nominal parameters", None, None, True
     if target is not None:
+        from ironbark_opt.dynamics.flown_apogee import applies
         from ironbark_opt.optimise.ballast import solve_ballast, solved_by_root
 
         # the implicit-function ballast derivatives need the apogee the solve put on the
-        # target: run's (the one-variable root, as `ballast` solves it) or the NLP's
-        solution = solve_ballast(setup, target, parameters=parameters, **ballast_options)
-        flown = solved_by_root(**ballast_options)
+        # target: run's (the one-variable root, as `ballast` solves it) where it is
+        # differentiated, else the NLP's (constraints, a free position, staged rockets,
+        # an ejection before apogee: apogee_functions' formulation)
+        flown = solved_by_root(**ballast_options) and applies(model, model.run(p0))
+        solution = solve_ballast(setup, target, parameters=parameters,
+                                 **{**ballast_options, "method": "auto" if flown else "ipopt"})
         target_agl = float(solution.values["target_agl_m"])
         p0 = np.array([solution.parameters[n] for n in params.NAMES])
         note = f"at the optimal ballast {solution.ballast:.4f} kg for {target_agl:.1f} m AGL ({solution.status})"

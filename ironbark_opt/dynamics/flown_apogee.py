@@ -38,21 +38,26 @@ from ironbark_opt.dynamics.model import G0, _refuse_controller
 _HORIZON_GROWTH = (1.0, 1.5, 2.25)
 
 
+def applies(model, run: dict) -> bool:
+    """Whether :func:`flown_apogee_function` covers the flight ``run`` (``model.run(p)``):
+    not for staged rockets (their own ``run``) nor for a flight whose ejection charge
+    fires before apogee (``run`` flies that on another grid); ``apogee_functions``
+    covers both."""
+    return not hasattr(type(model), "final_state_symbolic") and "ejection_before_apogee_s" not in run
+
+
 def flown_apogee_function(model, p_nominal) -> ca.Function | None:
     """``p -> (z_apogee [m AGL], t_apogee [s], rail_exit_speed [m/s], max_speed [m/s])``
     on :meth:`FlightModel.run`'s grid (see the module doc), the outputs of
-    ``apogee_functions(model, p)["apogee"]``; an MX Function.
-
-    None where it does not apply: staged rockets (their own ``run``) and a nominal
-    flight whose ejection charge fires before apogee (``run`` flies that on
-    another grid); ``apogee_functions`` covers both.
+    ``apogee_functions(model, p)["apogee"]``; an MX Function.  None where it does
+    not apply (:func:`applies`).
     """
     _refuse_controller(model.setup)
     p_nominal = np.asarray(p_nominal, dtype=float)
     if hasattr(type(model), "final_state_symbolic"):
         return None
     run = model.run(p_nominal)
-    if "ejection_before_apogee_s" in run:
+    if not applies(model, run):
         return None
     t_b0, t_a0 = float(run["t_burnout"]), float(run["t_apogee"])
     horizon0 = float(model.vz_l(run["x_burnout"])) / G0 + 2.0
