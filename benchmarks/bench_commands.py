@@ -196,8 +196,11 @@ def median_time(func, repeat: int) -> tuple[float, float]:
 
 
 def rocketpy_ballast(target_agl: float, tol_m: float = 0.5) -> tuple[float, int, tuple[float, float]]:
-    """(ballast [kg], flights, (wall, cpu) [s]): Illinois regula falsi on RocketPy apogee(ballast)."""
+    """(ballast [kg], flights, (wall, cpu) [s]): Illinois regula falsi (``ironbark_opt.roots.illinois``,
+    the root ``ballast`` uses) on RocketPy apogee(ballast)."""
     from rocketpy_calisto import build, fly
+
+    from ironbark_opt.roots import illinois
 
     def g(m):
         env, rocket = build(dry_mass_offset=m)
@@ -205,28 +208,12 @@ def rocketpy_ballast(target_agl: float, tol_m: float = 0.5) -> tuple[float, int,
         return f.apogee - env.elevation - target_agl
     t0, c0 = time.perf_counter(), time.process_time()
     lo, hi = 0.0, 5.0
-    g_lo, g_hi, n, side = g(lo), g(hi), 2, 0
+    g_lo, g_hi, n = g(lo), g(hi), 2
     while g_lo * g_hi > 0 and hi < 40:
         lo, g_lo, hi = hi, g_hi, 2 * hi
         g_hi, n = g(hi), n + 1
-    m = lo
-    for _ in range(60):
-        m = hi - g_hi * (hi - lo) / (g_hi - g_lo)
-        gm = g(m)
-        n += 1
-        if abs(gm) <= tol_m:
-            break
-        if (gm > 0) == (g_lo > 0):
-            lo, g_lo = m, gm
-            if side == -1:
-                g_hi *= 0.5
-            side = -1
-        else:
-            hi, g_hi = m, gm
-            if side == 1:
-                g_lo *= 0.5
-            side = 1
-    return m, n, (time.perf_counter() - t0, time.process_time() - c0)
+    m, _, _, evaluations, _ = illinois(lambda m: (g(m), None), lo, g_lo, hi, g_hi, gtol=tol_m, xtol=0.0)
+    return m, n + evaluations, (time.perf_counter() - t0, time.process_time() - c0)
 
 
 def _ms(t: tuple[float, float]) -> str:

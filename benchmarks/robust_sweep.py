@@ -53,11 +53,12 @@ def in_band(apogee, target, band):
 
 
 def linear_fit(apogee, P, spec):
-    """Least-squares apogee = c + sum_j b_j xi_j on the dispersed parameters: (names, b, c, residuals)."""
+    """Least-squares apogee = c + sum_j b_j xi_j on the dispersed parameters:
+    (names, b, c, residuals, xi (samples x parameters))."""
     names = list(spec.parameters)
     X = np.vstack([P[params.index(n)] for n in names]).T
     coef, *_ = np.linalg.lstsq(np.hstack([X, np.ones((X.shape[0], 1))]), apogee, rcond=None)
-    return names, coef[:-1], coef[-1], apogee - X @ coef[:-1] - coef[-1]
+    return names, coef[:-1], coef[-1], apogee - X @ coef[:-1] - coef[-1], X
 
 
 def saa_design_study(a_0, slope, P, p_nom, spec, masses, m0, probs, target, band, label, repeats=300):
@@ -66,7 +67,7 @@ def saa_design_study(a_0, slope, P, p_nom, spec, masses, m0, probs, target, band
     the flown samples), judged on the flown samples' P(in band) curve."""
     from ironbark_opt.optimise.robust_objective import silverman_width, smoothed_objective
 
-    names, b, c, resid = linear_fit(a_0, P, spec)
+    names, b, c, resid, _ = linear_fit(a_0, P, spec)
     rows = [params.index(n) for n in names]
     rng = np.random.default_rng(1)
     dms = masses - m0
@@ -98,16 +99,12 @@ def describe(apogee, target, band, P, spec):
           f"skewness {skew:+.3f}, 5/25/75/95 % {q5:.0f}/{q25:.0f}/{q75:.0f}/{q95:.0f} m")
     print(f"  P(|miss| <= {band:.0f} m) = {p:.4f} +/- {math.sqrt(p * (1 - p) / a.size):.4f}; "
           f"E|miss| {np.abs(d).mean():.1f} m")
-    names = [n for n in spec.parameters]
-    X = np.vstack([P[params.index(n)] for n in names]).T
-    Xc = X - X.mean(0)
-    coef, *_ = np.linalg.lstsq(np.hstack([Xc, np.ones((a.size, 1))]), a, rcond=None)
-    fit = Xc @ coef[:-1] + coef[-1]
-    r2 = 1 - np.var(a - fit) / np.var(a)
-    share = coef[:-1] ** 2 * Xc.var(0) / np.var(a)
+    names, b, _, resid, X = linear_fit(a, P, spec)
+    r2 = 1 - np.var(resid) / np.var(a)
+    share = b ** 2 * X.var(0) / np.var(a)
     print(f"  linear fit on the dispersed parameters: R^2 {r2:.3f}; share of the apogee variance:")
     for j in np.argsort(-share):
-        print(f"    {names[j]:22s} {100 * share[j]:6.1f} %   ({coef[j] * Xc[:, j].std():+7.1f} m per std)")
+        print(f"    {names[j]:22s} {100 * share[j]:6.1f} %   ({b[j] * X[:, j].std():+7.1f} m per std)")
 
 
 def sweep(model, P, m0, x0, delta, target, band, label, cache=None):

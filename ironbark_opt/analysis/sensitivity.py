@@ -2,15 +2,23 @@
 
 Derivatives of apogee, apogee time, maximum speed and rail-exit speed with
 respect to every named parameter (:mod:`ironbark_opt.params`), by CasADi
-algorithmic differentiation of the same phased trajectory ``simulate``
-flies.  The event times (rail exit, apogee) are roots, so AD through the
-``rootfinder`` gives the implicit-function derivatives (Griewank & Walther,
-*Evaluating Derivatives*, 2nd ed., SIAM 2008, ch. 15).
+algorithmic differentiation of the apogee ``simulate`` reports: the same
+phased trajectory on the same steps, apogee inside its coast step
+(:func:`ironbark_opt.dynamics.flown_apogee.flown_apogee_function`).  The
+event times (rail exit, apogee) are roots, so AD through the ``rootfinder``
+gives the implicit-function derivatives (Griewank & Walther, *Evaluating
+Derivatives*, 2nd ed., SIAM 2008, ch. 15).  Staged rockets and a flight whose
+charge fires before apogee use the ballast NLP's formulation instead
+(:func:`ironbark_opt.dynamics.model.apogee_functions`, coast grid ending at
+apogee; centimetres from ``simulate``).
 
-With a ``target``, the ballast that hits it is solved first
-(:func:`ironbark_opt.optimise.ballast.solve_ballast`) and the sensitivities
-are taken at that optimum, together with the parametric sensitivity of the
-optimal ballast itself.  At the optimum the apogee constraint
+With a ``target``, the ballast that hits it is solved first, as ``ballast``
+solves it (:func:`ironbark_opt.optimise.ballast.solve_ballast`), and the
+sensitivities are taken at that optimum, together with the parametric
+sensitivity of the optimal ballast itself, on the apogee that solve put on
+the target: ``run``'s for the one-variable root, as ``ballast`` solves it;
+with flight constraints, a free position, a staged rocket or an ejection
+before apogee the NLP solves it and its formulation is differentiated.  At the optimum the apogee constraint
 ``z(m*, p) = target`` holds, so by the implicit-function theorem (Fiacco,
 *Introduction to Sensitivity and Stability Analysis in Nonlinear
 Programming*, Academic Press 1983, ch. 3, the basic sensitivity theorem,
@@ -74,7 +82,21 @@ def natural_step(name: str, value: float) -> tuple[float, str]:
     return size, label
 
 
-def jacobian_function(model, p_nominal) -> ca.Function:
+def apogee_function(model, p_nominal, *, flown: bool = True) -> ca.Function:
+    """``p -> (y_0, ..., y_3)``, the four :data:`OUTPUTS` as the MX Function that is
+    differentiated: with ``flown``, the apogee of ``FlightModel.run``
+    (:func:`~ironbark_opt.dynamics.flown_apogee.flown_apogee_function`) where it
+    applies, else (and with ``flown=False``) the ballast NLP's
+    (:func:`~ironbark_opt.dynamics.model.apogee_functions`)."""
+    from ironbark_opt.dynamics.flown_apogee import flown_apogee_function
+    from ironbark_opt.dynamics.model import apogee_functions
+
+    p_nominal = np.asarray(p_nominal, dtype=float)
+    fn = flown_apogee_function(model, p_nominal) if flown else None
+    return fn if fn is not None else apogee_functions(model, p_nominal)["apogee"]
+
+
+def jacobian_function(model, p_nominal, *, flown: bool = True) -> ca.Function:
     """CasADi Function ``p -> (y, dy/dp)`` of the four :data:`OUTPUTS`.
 
     Builds a symbolic (MX) Function; call it with a numeric ``p`` (or embed
@@ -85,10 +107,10 @@ def jacobian_function(model, p_nominal) -> ca.Function:
     model : FlightModel
     p_nominal : array [mixed SI]
         The point the event rootfinders start from.
+    flown : bool
+        Differentiate ``simulate``'s apogee (see :func:`apogee_function`).
     """
-    from ironbark_opt.dynamics.model import apogee_functions
-
-    fn = apogee_functions(model, np.asarray(p_nominal, dtype=float))["apogee"]
+    fn = apogee_function(model, p_nominal, flown=flown)
     p = ca.MX.sym("p", params.SIZE)
     y = ca.vertcat(*fn(p))
     return ca.Function("apogee_jacobian", [p], [y, ca.jacobian(y, p)], ["p"], ["y", "dy_dp"])
@@ -108,8 +130,9 @@ class Sensitivities:
         The full parameter vector the derivatives are taken at [SI].
     values : mapping output key -> float
         The outputs at ``point`` (``apogee_agl_m``, ...), from the
-        differentiable apogee Function (its coast grid ends exactly at
-        apogee, so it differs from ``simulate``'s apogee by centimetres).
+        differentiated apogee Function: ``simulate``'s values (staged rockets,
+        an ejection before apogee and a ballast from the NLP: the NLP's
+        formulation, centimetres from ``simulate``).
     jacobian : array (len(OUTPUTS), len(names))
         d output / d parameter [output unit per parameter SI unit].
     ballast : mapping name -> float or None, or None
@@ -260,7 +283,8 @@ def sensitivities(setup, *, parameters: Mapping[str, float] | None = None, names
         Parameters to report (default: all of :data:`ironbark_opt.params.NAMES`).
     target : str or float, optional
         Apogee target (``"3000m"``, ``"10000 ft"``, ...): solve the ballast
-        first, take the derivatives at the optimum and add dm*/dp.
+        first (as ``solve_ballast`` with ``ballast_options`` does), take the
+        derivatives at the optimum and add dm*/dp.
     model : FlightModel, optional
         Reuse an already built (VM) model.
     ballast_options
@@ -277,17 +301,22 @@ def sensitivities(setup, *, parameters: Mapping[str, float] | None = None, names
         raise InputError(f"{', '.join(ballast_options)} need(s) a target", field=next(iter(ballast_options)))
     model = model or flight_model(setup)
     p0 = setup.nominal_parameters(**dict(parameters or {}))
-    note, target_agl, solution = "at the nominal parameters", None, None
+    note, target_agl, solution, flown = "at the nominal parameters", None, None, True
     if target is not None:
-        from ironbark_opt.optimise.ballast import solve_ballast
+        from ironbark_opt.dynamics.flown_apogee import applies
+        from ironbark_opt.optimise.ballast import solve_ballast, solved_by_root
 
-        # IPOPT's NLP: its optimum satisfies z(T) = target in the formulation differentiated
-        # below (apogee_functions), which the implicit-function ballast derivatives need
-        solution = solve_ballast(setup, target, parameters=parameters, **{"method": "ipopt", **ballast_options})
+        # the implicit-function ballast derivatives need the apogee the solve put on the
+        # target: run's (the one-variable root, as `ballast` solves it) where it is
+        # differentiated, else the NLP's (constraints, a free position, staged rockets,
+        # an ejection before apogee: apogee_functions' formulation)
+        flown = solved_by_root(**ballast_options) and applies(model, model.run(p0))
+        solution = solve_ballast(setup, target, parameters=parameters,
+                                 **{**ballast_options, "method": "auto" if flown else "ipopt"})
         target_agl = float(solution.values["target_agl_m"])
         p0 = np.array([solution.parameters[n] for n in params.NAMES])
         note = f"at the optimal ballast {solution.ballast:.4f} kg for {target_agl:.1f} m AGL ({solution.status})"
-    y, J = (np.array(v) for v in jacobian_function(model, p0)(p0))
+    y, J = (np.array(v) for v in jacobian_function(model, p0, flown=flown)(p0))
     y = y.ravel()
     cols = [params.index(n) for n in names]
     values = {k: float(y[i]) for i, (k, _, _) in enumerate(OUTPUTS)}

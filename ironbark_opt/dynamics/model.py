@@ -17,7 +17,6 @@ expressions.
 """
 from __future__ import annotations
 
-import hashlib
 import math
 from dataclasses import dataclass
 
@@ -129,9 +128,7 @@ class FlightModel:
         self._compile_phases()
 
     def _library_key(self) -> str | None:
-        if self._key is None:
-            return None
-        return hashlib.sha256(repr((self._key, self.discretisation())).encode()).hexdigest()[:24]
+        return model_cache.library_key(self)
 
     def _compiled(self, func: ca.Function) -> ca.Function:
         """``func`` compiled as ``self.jit`` asks (the VM Function itself when it says no);

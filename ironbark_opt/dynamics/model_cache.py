@@ -43,6 +43,16 @@ def source_digest() -> str:
     return _SOURCE_DIGEST[0]
 
 
+def library_key(model, *names) -> str | None:
+    """Name (24 hex digits) of a compiled library of ``model`` on its current RK4 grid:
+    a hash of the model's key, its discretisation and ``names`` (what tells its
+    libraries apart: nothing for the model's own, else the Function's name and
+    options); None when the model has no key (not cacheable)."""
+    if model._key is None:
+        return None
+    return hashlib.sha256(repr((model._key, model.discretisation(), *names)).encode()).hexdigest()[:24]
+
+
 def model_key(setup, steps) -> str | None:
     """The cache key of ``setup`` flown with ``steps``, or None (not cacheable)."""
     if os.environ.get("IRONBARK_MODEL_CACHE", "1") == "0":

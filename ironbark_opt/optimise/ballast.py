@@ -21,7 +21,6 @@ the constraints and reports the closest feasible apogee.
 """
 from __future__ import annotations
 
-import hashlib
 import time
 from dataclasses import dataclass, field
 from typing import Mapping
@@ -32,6 +31,7 @@ import numpy as np
 from ironbark_opt import params
 from ironbark_opt.dynamics.integrator import cached_library, compile_detached, compile_function
 from ironbark_opt.dynamics.model import _final_state
+from ironbark_opt.dynamics.model_cache import library_key
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
 from ironbark_opt.errors import InputError
 from ironbark_opt.flight import flight_model, flight_of_run
@@ -200,8 +200,8 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     # Initial guess: interpolate between the bracketing flights.
     frac = (a_lo - target_agl) / (a_lo - a_hi)
     guess = fly(frac * m_max)
-    if method == "auto" and not free_position and min_rail_speed is None and min_margin is None \
-            and not ipopt_options:
+    if solved_by_root(free_position=free_position, min_rail_speed=min_rail_speed, min_margin=min_margin,
+                      ipopt_options=ipopt_options, method=method):
         m_opt, run, n_it = _mass_root(fly, target_agl, (0.0, lo), (m_max, hi), (frac * m_max, guess))
         return _solution(setup, model, p_nom, m_opt, p_nom[i_x], run, target_agl, True, "solved", (), t_start,
                          common, iterations=n_it, zero_ballast_apogee=a_lo)
@@ -245,6 +245,15 @@ def solve_ballast(setup, target, *, free_position: bool = False, mass_max: float
     return _solution(setup, model, p_nom, m_opt, x_opt, run, target_agl, feasible,
                      "solved" if feasible else status, tuple(active), t_start, common,
                      iterations=stats.get("iter_count"), zero_ballast_apogee=a_lo)
+
+
+def solved_by_root(*, free_position: bool = False, min_rail_speed=None, min_margin=None, ipopt_options=None,
+                   method: str = "auto", **_) -> bool:
+    """Whether :func:`solve_ballast` with these options solves the one-variable root
+    on :meth:`FlightModel.run`'s apogee (:func:`_mass_root`) rather than the NLP
+    (other keywords of ``solve_ballast`` are accepted and do not matter)."""
+    return method == "auto" and not free_position and min_rail_speed is None and min_margin is None \
+        and not ipopt_options
 
 
 #: apogee error at which the one-variable root is accepted [m] (IPOPT's constr_viol_tol)
@@ -301,9 +310,7 @@ def _nlp(model, free_position: bool, rail_speed: bool, margin: bool, ipopt_optio
         return cache[key]
     rail_variable = _rail_variable(model)
     name = _nlp_name(free_position, rail_speed, margin)
-    key_c = None
-    if rail_variable and model._key is not None:
-        key_c = hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
+    key_c = library_key(model, name) if rail_variable else None
     names = [n for n, on in (("rail_exit_speed_mps >= minimum", rail_speed),
                              ("static_margin_rail_exit_cal >= minimum", margin)) if on]
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",

@@ -228,12 +228,17 @@ def solve_robust_ballast(setup, target, spec, *, objective: str = "in_band", ban
               "ipopt_iterations": ipopt_iterations, "sample_evaluations": apogees.evaluations,
               "check_samples": int(check_samples), **selection}
     # the nominal parameters flown at both ballasts by simulate (as the nominal solution reports them)
-    p_rob = p_nom.copy()
-    p_rob[params.index("ballast_mass")], p_rob[params.index("ballast_x")] = m_opt, x_opt
-    flown = simulate(setup, p=p_rob, model=model).summary_values
+    nominal_flown = {key: float(nv["resimulated_apogee_agl_m" if key == "apogee_agl_m" else key])
+                     for key in _FLOWN}
+    if kept_nominal:                # the nominal solution's own flight of this very ballast
+        flown = nominal_flown
+    else:
+        p_rob = p_nom.copy()
+        p_rob[params.index("ballast_mass")], p_rob[params.index("ballast_x")] = m_opt, x_opt
+        flown = simulate(setup, p=p_rob, model=model).summary_values
     for key in _FLOWN:
         values[key] = float(flown[key])
-        values[f"nominal_{key}"] = float(nv["resimulated_apogee_agl_m" if key == "apogee_agl_m" else key])
+        values[f"nominal_{key}"] = nominal_flown[key]
     for name, value in (("min_rail_speed_mps", min_rail_speed), ("min_margin_cal", min_margin)):
         if value is not None:
             values[name] = float(value)

@@ -20,12 +20,11 @@ Numeric-only.
 """
 from __future__ import annotations
 
-import hashlib
-
 import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
+from ironbark_opt.dynamics.model_cache import library_key
 from ironbark_opt.errors import SolverError
 from ironbark_opt.optimise.sample_apogees import ballast_parameters
 
@@ -56,11 +55,7 @@ def _compiled_events(model, free_position: bool) -> ca.Function:
         func = event_function(model, free_position)
         if model.jit:
             from ironbark_opt.dynamics.integrator import compile_function
-            key = None
-            if model._key is not None:
-                key = hashlib.sha256(repr((model._key, model.discretisation(), free_position,
-                                           "robust_events_rail")).encode()).hexdigest()[:24]
-            func = compile_function(func, key=key)
+            func = compile_function(func, key=library_key(model, free_position, "robust_events_rail"))
         cache[free_position] = func
     return cache[free_position]
 

@@ -25,13 +25,12 @@ Numeric-only.
 """
 from __future__ import annotations
 
-import hashlib
-
 import casadi as ca
 import numpy as np
 
 from ironbark_opt import params
 from ironbark_opt.dynamics import ejection
+from ironbark_opt.dynamics.model_cache import library_key
 from ironbark_opt.errors import InputError
 
 #: rows of the ``out`` output of :func:`ascent_derivative_function`
@@ -63,12 +62,6 @@ def ascent_derivative_function(model, free_position: bool) -> ca.Function:
                        ["w", "p"], ["ev", "out", "J"])
 
 
-def _library_key(model, name: str) -> str | None:
-    if model._key is None:
-        return None
-    return hashlib.sha256(repr((model._key, model.discretisation(), name)).encode()).hexdigest()[:24]
-
-
 def compiled_derivative_function(model, free_position: bool) -> ca.Function:
     """:func:`ascent_derivative_function` as ``model.jit`` asks, cached on the model: the
     compiled library when the disk cache has it; else ``jit=True`` compiles it now and
@@ -80,7 +73,7 @@ def compiled_derivative_function(model, free_position: bool) -> ca.Function:
     slot = ("ascent", free_position, model.discretisation())
     if slot not in cache:
         k = 2 if free_position else 1
-        key = _library_key(model, f"robust_ascent_{k}")
+        key = library_key(model, f"robust_ascent_{k}")
         func = cached_library(f"robust_ascent_{k}", key) if model.jit and key is not None else None
         if func is None:
             func = ascent_derivative_function(model, free_position)
@@ -111,6 +104,8 @@ class SampleApogees:
         self.free_position = free_position
         self.func = compiled_derivative_function(model, free_position).map(self.n, "thread", 2)
         self.evaluations = 0
+        # ejection times [s] of the samples (burnout + delay: independent of the ballast)
+        self._t_ejection = ejection.ejection_time(model.setup, self.P)
         self._seen: dict = {}
         self._fallback: dict = {}
 
@@ -134,11 +129,7 @@ class SampleApogees:
         ev, out, J = (np.array(v) for v in self.func(w, self.P))
         self.evaluations += 1
         J = J.reshape(len(OUTPUTS), self.n, self.k).transpose(0, 2, 1)          # 3 x k x N
-        P = self.P.copy()
-        P[params.index("ballast_mass")] = w[0]
-        if self.free_position:
-            P[params.index("ballast_x")] = w[1]
-        t_e = ejection.ejection_time(self.model.setup, P)
+        t_e = self._t_ejection
         t_apo = dict(zip(EV, ev))["t_k"] + dict(zip(EV, ev))["h"]
         redo = ~applies(ev) | ((t_e < t_apo) if t_e is not None else False)
         if np.any(redo):                   # the phase formulation for those samples

@@ -44,6 +44,22 @@ def test_sensitivity_summary_csv_and_plot(runner, tmp_path):
     assert png.stat().st_size > 1000
 
 
+def test_sensitivity_at_a_target_is_taken_at_the_ballast_commands_answer(runner):
+    """`sensitivity --target` and `ballast --target` agree: the same ballast (bit for bit)
+    and the apogee there is the one `ballast` re-simulates (simulate's, which the
+    derivatives differentiate)."""
+    sens = runner.invoke(main, ["sensitivity", ROCKET, "--target", "3000m", "--param", "inclination", "--json"])
+    ballast = runner.invoke(main, ["ballast", ROCKET, "--target", "3000m", "--json"])
+    assert sens.exit_code == 0 and ballast.exit_code == 0, sens.output + ballast.output
+    s, b = json.loads(sens.stdout), json.loads(ballast.stdout)
+    print(f"ballast {b['ballast_kg']:.6f} kg, sensitivity's point {s['ballast_kg']:.6f} kg; apogee "
+          f"{s['apogee_agl_m']:.6f} m vs re-simulated {b['resimulated_apogee_agl_m']:.6f} m")
+    assert s["ballast_kg"] == b["ballast_kg"]
+    assert s["apogee_agl_m"] == pytest.approx(b["resimulated_apogee_agl_m"], abs=1e-6)
+    # a steeper rail (angle above horizontal): a higher apogee, more ballast to stay on the target
+    assert s["parameters"]["inclination"]["change_per_step"]["ballast_kg"] > 0
+
+
 def test_montecarlo_json_csv_and_plots(runner, tmp_path):
     csv, hist, ell = tmp_path / "mc.csv", tmp_path / "hist.png", tmp_path / "ellipse.png"
     args = ["montecarlo", ROCKET, "--spec", SPEC, "--samples", "5", "--chunk", "3", "--target", "3300m",

@@ -154,6 +154,10 @@ def test_cached_model_flies_bit_identically(tmp_path, monkeypatch):
     p = setup.nominal_parameters(ballast_mass=0.3)
     a, b = built.run(p), loaded.run(p)
     assert np.array_equal(a["x"], b["x"]) and a["t_apogee"] == b["t_apogee"]
+    # one function names every compiled library: the same model and names, the same key
+    assert loaded._library_key() == built._library_key() == model_cache.library_key(built)
+    names = ((), ("ballast_nlp_000",), ("robust_ascent_1",), (False, "robust_events_rail"))
+    assert len({model_cache.library_key(built, *n) for n in names}) == len(names)
     other = load_setup(ROOT / "examples/calisto/calisto.toml", rail_exit="aft_button")
     assert model_cache.model_key(other, built.steps) != key         # another setup, another key
 

@@ -41,7 +41,7 @@ import pytest
 from ironbark_opt import params
 from ironbark_opt.analysis.distributions import load_spec
 from ironbark_opt.analysis.montecarlo import montecarlo
-from ironbark_opt.flight import flight_model
+from ironbark_opt.flight import flight_model, simulate
 from ironbark_opt.optimise.robust import solve_robust_ballast
 from ironbark_opt.optimise.robust_objective import gain_t, smoothed_objective
 from ironbark_opt.optimise.sample_apogees import SampleApogees
@@ -167,6 +167,10 @@ def test_insignificant_saa_gain_keeps_the_nominal_ballast(calisto, small_solve):
     assert v["saa_optimum_ballast_kg"] == pytest.approx(free["ballast_kg"], abs=1e-9)
     assert v["saa_gain_t"] == pytest.approx(free["saa_gain_t"], rel=1e-9)
     assert v["ballast_kg"] == v["nominal_ballast_kg"] and v["ballast_x_m"] == v["nominal_ballast_x_m"]
+    # the kept ballast's flight is the nominal solution's (not flown again): simulate's numbers
+    flown = simulate(calisto, parameters=sol.nominal.parameters).summary_values
+    for key in ("apogee_agl_m", "rail_exit_speed_mps", "static_margin_rail_exit_cal", "static_margin_min_cal"):
+        assert v[key] == v[f"nominal_{key}"] == pytest.approx(flown[key], abs=1e-9)
     assert v["check_probability_gain"] == 0.0 and v["check_probability_in_band"] == free["check_nominal_probability_in_band"]
     assert "not significant, the nominal ballast kept" in sol.summary()
 
