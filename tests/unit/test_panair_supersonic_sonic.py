@@ -174,3 +174,54 @@ def test_field_point_above_an_edge_line_is_finite():
     for backend in ("compiled", "numpy"):
         np.testing.assert_allclose(source_potential(pts, flat, nrm, backend=backend)[:, 0], ref,
                                    rtol=1e-8)
+
+
+def test_sonic_fin_leading_edge_solves_linearly(monkeypatch):
+    """Fins whose rounded leading edge (meshed as a wedge) is exactly sonic at Mach 1.2
+    (sweep acos(1/1.2) = 33.6 deg, as Allen's fin 12 and EuRoC's Andromeda): linear
+    theory's pressure there is beyond stagnation (the sonic-edge singularity), which
+    the out-of-range check used to report (the whole Mach number then went to local
+    inclination).  The flagged panels are exactly forward-facing fin faces, at Mach
+    1.2 only; with them the case solves, is recorded ("linear-sonic-le"), CN is
+    linear in alpha, and CN-alpha and the centre of pressure continue those of
+    Mach 1.25 and 1.3 (linear theory's lift is continuous through the sonic-edge
+    condition, e.g. the delta wing's CL_alpha = 4/B at m = 1 from both sides,
+    Jones & Cohen 1960): within 3 % and 0.1 caliber."""
+    from dataclasses import replace
+
+    from ironbark_opt.errors import SolverError
+    from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
+    from panair.solver import build_panels, make_solver
+    from panair.solver import supersonic as sup
+    from panair.sweep import _solve_one
+    body = BodyGeometry(np.array([0.0, 0.3, 1.2]), np.array([0.0, 0.05, 0.05]))
+    span = 0.1
+    fins = (FinGeometry(2, 0.14, 0.07, span, span * math.tan(math.acos(1 / 1.2)), 0.95, 0.004,
+                        roll=np.pi / 2, section="rounded"),)
+    opt = replace(MeshOptions(n_theta=16, n_nose=10, body_spacing=0.8, n_chord=16,
+                              n_span=6).for_mach(1.2), tip_mach=(1.2,))
+    p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
+                     symmetric=True)
+    sref, lref = math.pi * 0.05**2, 0.1
+    alphas = np.radians([0.0, 2.0, 4.0])
+    s12 = make_solver(p, 1.2, sref=sref, lref=lref)
+    flagged = s12._sonic_le
+    fin_net = np.isin(p.network[p.integrate], [p.names.index("fin0")])
+    assert flagged.sum() > 20 and np.all(fin_net[flagged]) and np.all(s12._nrm[flagged, 0] < 0)
+    assert not make_solver(p, 1.3, sref=sref, lref=lref)._sonic_le.any()
+    mach, coef, extra, _, how = _solve_one((p, 1.2, alphas, sref, lref, 0.0, "second-order"))
+    assert how == "linear-sonic-le" and extra == []
+    cn, cm = coef[:, 1], coef[:, 2]
+    assert cn[2] / cn[1] == pytest.approx(2.0, rel=0.01)
+    ref = []
+    for m in (1.25, 1.3):
+        r = make_solver(p, m, sref=sref, lref=lref).solve(alphas[1])[0]
+        ref.append((r.CN, -r.Cm / r.CN))
+    print(f"\nsonic LE: CN(2 deg) {cn[1]:.4f} vs Mach 1.25/1.3 {ref[0][0]:.4f}/{ref[1][0]:.4f}, "
+          f"xcp {-cm[1] / cn[1]:.3f} vs {ref[0][1]:.3f}/{ref[1][1]:.3f} cal")
+    assert cn[1] == pytest.approx(ref[0][0], rel=0.03)
+    assert abs(-cm[1] / cn[1] - ref[0][1]) < 0.1
+    # the same solution without the classification: reported non-physical (before)
+    monkeypatch.setattr(sup, "_sonic_leading_edge", lambda *a: np.zeros(len(flagged), bool))
+    with pytest.raises(SolverError, match="non-physical surface pressure"):
+        make_solver(p, 1.2, sref=sref, lref=lref).solve(alphas[1])
