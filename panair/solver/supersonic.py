@@ -52,6 +52,10 @@ with a margin; Mach-inclined or superinclined panels, a singular system,
 or a non-physical pressure (Cp below vacuum or above 1.5 x the stagnation
 value on more than 1 % of the wetted area, or on a smaller area that carries
 a non-negligible load, BAD_FORCE_MAX) raise SolverError naming the case.
+Exception: the leading-edge panels of a fin edge that is sonic for linear
+theory (:func:`_sonic_leading_edge`), where the theory's pressure is singular
+but integrable and its integrated load is the theory's answer; they stay in
+the forces (``sonic_le_out_of_range`` records that they left the range).
 
 Numeric-only.
 """
