@@ -52,10 +52,11 @@ with a margin; Mach-inclined or superinclined panels, a singular system,
 or a non-physical pressure (Cp below vacuum or above 1.5 x the stagnation
 value on more than 1 % of the wetted area, or on a smaller area that carries
 a non-negligible load, BAD_FORCE_MAX) raise SolverError naming the case.
-Exception: the leading-edge panels of a fin edge that is sonic for linear
-theory (:func:`_sonic_leading_edge`), where the theory's pressure is singular
-but integrable and its integrated load is the theory's answer; they stay in
-the forces (``sonic_le_out_of_range`` records that they left the range).
+Exception: compression beyond the bound on the leading-edge panels of a fin
+edge that is sonic for linear theory (:func:`_sonic_leading_edge`), where the
+theory's pressure is singular but integrable and its integrated load is the
+theory's answer; they stay in the forces (``sonic_le_out_of_range`` records
+that they left the range).
 
 Numeric-only.
 """
@@ -470,21 +471,23 @@ class SupersonicSolver:
                     f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: singular pressure on "
                     f"a fin tip cap (|Cp| up to {np.nanmax(np.abs(cap_cp)):.3g} > {CAP_CP_MAX:g}: "
                     "a Mach-cone coincidence); change the Mach number slightly or the mesh")
-            # a sonic leading edge (_sonic_leading_edge): linear theory's pressure there
-            # is singular but integrable, and the integrated load is the theory's
-            # answer (the lift of flat wings is continuous through the sonic-edge
-            # condition, e.g. CL_alpha = 4/B at m = 1 from both sides for the delta
-            # wing, Jones & Cohen 1960); such panels are kept in the forces, not
-            # counted as out of range, as long as finite and below CAP_CP_MAX (a
-            # Mach-cone coincidence gives ~1e8)
+            # a sonic leading edge (_sonic_leading_edge): linear theory's compression
+            # there is singular (2 theta_n / sqrt|M_n^2 - 1|) but integrable, and the
+            # integrated load is the theory's answer (the lift of flat wings is
+            # continuous through the sonic-edge condition, e.g. CL_alpha = 4/B at m = 1
+            # from both sides for the delta wing, Jones & Cohen 1960): such panels above
+            # the stagnation bound stay in the forces and out of the out-of-range count
+            # while finite and below CAP_CP_MAX (a Mach-cone coincidence gives ~1e8);
+            # expansion past vacuum stays linear theory's large-angle breakdown
             le_cp = cp[self._sonic_le]
             if np.any(~np.isfinite(le_cp) | (np.abs(le_cp) > CAP_CP_MAX)):
                 raise SolverError(
                     f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: singular pressure "
                     f"at a sonic fin leading edge (|Cp| up to {np.nanmax(np.abs(le_cp)):.3g})")
-            if np.any(_bad_panels(le_cp, self._cp_vac, self._cp_max)):
+            exempt = self._sonic_le & (cp > self._cp_max)
+            if np.any(exempt):
                 self.sonic_le_out_of_range = True
-            sel_chk = sel & ~self._sonic_le
+            sel_chk = sel & ~exempt
             cpi = cp[sel_chk]
             frac = _bad_area(cpi, self._area[sel_chk], self._cp_vac, self._cp_max)
             c = integrate_forces(cp[sel], self._cen[sel], self._nrm_f[sel], self._area[sel],
