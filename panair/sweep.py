@@ -56,6 +56,10 @@ linear theory solves (it breaks at large angles: expansion past vacuum)
 continues the last solved one with Jorgensen's potential-flow shape
 (:func:`_solve_one`); those angles are listed per Mach number in the
 metadata ``alpha_deg_extrapolated`` and ``ironbark aero build`` warns.
+A fin leading edge that is sonic for linear theory (its pressure singular and
+beyond stagnation there, the load integrable) keeps linear theory's solution;
+such Mach numbers are listed in ``mach_sonic_leading_edge``
+(:func:`panair.solver.supersonic._sonic_leading_edge`).
 
 Numeric-only.
 """
@@ -146,7 +150,7 @@ def _solve_one(args):
         if body_mask is not None and np.any(body_mask) and abs(alphas[0]) < 1e-12:
             # incompressible minimum Cp on the body (Prandtl-Glauert factor removed)
             cp_min = float(np.min(res[0].cp[body_mask])) * math.sqrt(1.0 - mach * mach)
-        return mach, np.array([[r.CA, r.CN, r.Cm] for r in res]), [], cp_min, "linear"
+        return mach, np.array([[r.CA, r.CN, r.Cm] for r in res]), [], cp_min, _linear_how(solver)
     except SolverError:
         if mach < MACH_SUPERSONIC_MIN:
             raise
@@ -165,7 +169,14 @@ def _solve_one(args):
     extra = [float(a) for a in alphas[len(rows):]]      # the first failure and all above it
     rows += [[ca0, cn0 * _jorgensen_potential(a) / g0, cm0 * _jorgensen_potential(a) / g0]
              for a in extra]
-    return mach, np.array(rows), extra, None, "linear"
+    return mach, np.array(rows), extra, None, _linear_how(solver)
+
+
+def _linear_how(solver) -> str:
+    """The method of a linear solution: "linear", or "linear-sonic-le" where a fin
+    leading edge is sonic for linear theory and its pressures went out of range
+    (kept in the forces; :func:`panair.solver.supersonic._sonic_leading_edge`)."""
+    return "linear-sonic-le" if getattr(solver, "sonic_le_out_of_range", False) else "linear"
 
 
 def _local_inclination(panels, mach, alphas, sref, lref, xref):
@@ -411,6 +422,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "pressure_rule": pressure_rule,
             "mach_local_inclination": sorted(m for m, how in method.items()
                                              if how == "local-inclination"),
+            "mach_sonic_leading_edge": sorted(m for m, how in method.items()
+                                              if how == "linear-sonic-le"),
             "body_cp_min_incompressible": next((cp_min[m] for m in sorted(cp_min)
                                                 if cp_min[m] is not None), None)}
     return coeffs, info

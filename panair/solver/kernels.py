@@ -9,11 +9,12 @@ kernels follow the NumPy code branch for branch (a ``np.where`` becomes an
 ``if`` on the branch NumPy keeps) and sum in the same order, so the two agree
 bitwise on this machine (tests/unit/test_panair_kernels.py asserts 1e-12
 relative on the matrices and forces; the Kestrel table is byte-identical).
-Caveat: the supersonic potential is sensitive to rounding where an edge meets
-the Mach cone (sqrt of a vanishing R), so a single-ulp difference in a dot
-product moves some coefficients by up to ~1e-6 relative; the kernel therefore
-reproduces NumPy's einsum order for 3-vectors ((x + z) + y, measured here),
-which another NumPy build or CPU could change.
+Caveat: the supersonic potential was sensitive to rounding where an edge meets
+the Mach cone (sqrt of a vanishing R: a single-ulp difference in a dot product
+moved some coefficients by up to ~1e-6 relative); sqrt(R) is now exactly 0 at a
+root inside the edge, but the kernel still reproduces NumPy's einsum order for
+3-vectors ((x + z) + y, measured here), which another NumPy build or CPU could
+change.
 
 Measured (Kestrel, 2352 / 3072 panels, CPU s per Mach number, loaded 2-core
 machine): subsonic setup 5.4 -> ~2.5 s (LU 0.5 s), supersonic 50.8 -> 11-14 s
@@ -24,8 +25,8 @@ Why Numba (and not CasADi code generation or a C kernel built with the
 system compiler):
 
 * the work is branchy scalar code — the supersonic kernel clips each edge
-  to the part of it inside the upstream Mach cone, chooses one of four
-  closed forms per sub-interval and skips the point-panel pairs outside the
+  to the part of it inside the upstream Mach cone, chooses one of three
+  forms of the edge integral per sub-interval and skips the point-panel pairs outside the
   domain of dependence.  Compiled scalar loops do exactly the arithmetic
   NumPy's masked arrays do without their temporaries (the NumPy path spends
   most of its time allocating, sorting and masking (m, n, 4) arrays);
@@ -168,60 +169,34 @@ def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, 
 # ---------------------------------------------------------------- supersonic source
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _f_at(tau, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta):
-    """F(tau) of :func:`panair.solver.supersonic_influence._antiderivative`, the
-    constants of the edge (a_safe ... beta, see :func:`_edge_integral`) given."""
-    R = a * (tau * tau) + b * tau + c
-    if R < 0.0:
-        R = 0.0
-    s = math.sqrt(R)
-    w = tau + w0
-    if lin:
-        j0 = 2.0 * s / b_safe
+def _edge_term(ta, tb, s_a, s_b, a, b, H2, delta):
+    """delta * Integral_ta^tb sqrt(R) / (R + H2) dtau, R = a tau^2 + b tau + c, over
+    one sub-interval with sqrt(R) = s_a, s_b at its ends: the scalar form of
+    :func:`panair.solver.supersonic_influence._edge_term` (derivation, sources and
+    the continuity at a sonic edge, a = 0, and at delta = 0 there)."""
+    if delta == 0.0:
+        return 0.0
+    dt = tb - ta
+    S = s_a + s_b
+    q = math.sqrt(abs(a))
+    x = q * dt / S if S > 0 else math.inf
+    ga = a * ta + 0.5 * b
+    gb = a * tb + 0.5 * b
+    if x < 1e-4:
+        j0 = 2.0 * dt / S * (1.0 + math.copysign(x * x, a) / 3.0)
     elif a > 0:
-        j0 = math.log(abs(sa * s + a_safe * w) + 1e-300) / sa
+        if x < 0.5:
+            j0 = 2.0 * dt / S * (math.atanh(x) / x)
+        else:
+            gm = a * (0.5 * (ta + tb)) + 0.5 * b
+            j0 = (math.copysign(1.0, gm)
+                  * math.log((q * s_b + abs(gb) + 1e-300) / (q * s_a + abs(ga) + 1e-300)) / q)
     else:
-        den = abs(a_safe * D)
-        if den < 1e-300:
-            den = 1e-300
-        arg = a_safe * w / math.sqrt(den)
-        if arg < -1.0:
-            arg = -1.0
-        elif arg > 1.0:
-            arg = 1.0
-        j0 = -math.asin(arg) / sa
-    if not H2 > 1e-30:
-        return j0
-    if lin:
-        hk = 2.0 * math.sqrt(H2) * math.atan(s / math.sqrt(H2)) / b_safe
-    elif ratio < 0:
-        hk = math.atan2(beta * s, w) / (beta * a_safe)
-    else:
-        den = abs(w - beta * s)
-        if den < 1e-300:
-            den = 1e-300
-        hk = -0.5 * math.log(abs(w + beta * s) / den + 1e-300) / (beta * a_safe)
-    return j0 - hk
-
-
-@njit(cache=True, nogil=True, error_model="numpy")
-def _edge_integral(ta, tb, a, b, c, H2):
-    """F(tb) - F(ta), F' = sqrt(R) / (R + H2), R = a tau^2 + b tau + c: the scalar
-    form of :func:`panair.solver.supersonic_influence._antiderivative` (same
-    operations in the same order), the edge constants computed once."""
-    lin = abs(a) < 1e-12
-    a_safe = 1.0 if lin else a
-    w0 = b / (2.0 * a_safe)
-    D = c - b * b / (4.0 * a_safe)
-    b_safe = b if abs(b) > 1e-300 else 1e-300
-    sa = math.sqrt(abs(a_safe))
-    ratio = 0.0
-    beta = 0.0
-    if H2 > 1e-30 and not lin:
-        ratio = (D + H2) / a_safe
-        beta = math.sqrt(abs(ratio) / H2)
-    return (_f_at(tb, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta)
-            - _f_at(ta, a, b, c, H2, lin, a_safe, b_safe, sa, w0, D, ratio, beta))
+        j0 = 2.0 * math.atan2(q * dt, S) / q
+    h = math.sqrt(H2)
+    ad = abs(delta)
+    ek = math.copysign(h, delta) * (math.atan2(ad * s_b, h * gb) - math.atan2(ad * s_a, h * ga))
+    return delta * j0 - ek
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -248,34 +223,40 @@ def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_
         b = 2.0 * (pk * ep - qk * eq)
         c = pk * pk - qk * qk - H2
         Lb = L[j, k]
+        # real roots, cancellation-free (supersonic_influence._roots)
         disc = b * b - 4.0 * a * c
-        lin = abs(a) < 1e-12
-        if lin:
-            r1 = -c / (b if abs(b) > 1e-300 else 1e-300)
-            r2 = r1
-        else:
-            sq = math.sqrt(disc) if disc > 0.0 else 0.0
-            r1 = (-b - sq) / (2 * a)
-            r2 = (-b + sq) / (2 * a)
-        if not (disc >= 0 or lin):
-            r1 = 0.0
-            r2 = 0.0
-        lo = min(r1, r2)
-        hi = max(r1, r2)
-        lo = min(max(lo, 0.0), Lb)
-        hi = min(max(hi, 0.0), Lb)
+        has = disc >= 0
+        r1 = 0.0
+        r2 = 0.0
+        if has:
+            qq = -0.5 * (b + math.copysign(math.sqrt(disc), b))
+            r2 = c / qq if qq != 0 else 0.0
+            r1 = qq / a if a != 0 else r2
+        lo_raw = min(r1, r2)
+        hi_raw = max(r1, r2)
+        lo = min(max(lo_raw, 0.0), Lb)
+        hi = min(max(hi_raw, 0.0), Lb)
+        # sqrt(R) at the sub-interval ends: exactly 0 at a root inside the edge
+        s0 = math.sqrt(max(c, 0.0))
+        sL = math.sqrt(max(a * (Lb * Lb) + b * Lb + c, 0.0))
+        s_lo = 0.0 if has and 0.0 < lo_raw < Lb else \
+            math.sqrt(max(a * (lo * lo) + b * lo + c, 0.0))
+        s_hi = 0.0 if has and 0.0 < hi_raw < Lb else \
+            math.sqrt(max(a * (hi * hi) + b * hi + c, 0.0))
         # sub-intervals [0, lo], [lo, hi], [hi, Lb]; the part inside the upstream
         # Mach cone is one of them (the cone is convex); as NumPy: the last valid one
         total = 0.0
         for s in range(3):
             ta = 0.0 if s == 0 else (lo if s == 1 else hi)
             tb = lo if s == 0 else (hi if s == 1 else Lb)
+            sa_ = s0 if s == 0 else (s_lo if s == 1 else s_hi)
+            sb_ = s_lo if s == 0 else (s_hi if s == 1 else sL)
             mid = 0.5 * (ta + tb)
             if (tb - ta > 1e-15 * (1 + Lb)) and (a * (mid * mid) + b * mid + c > 0) \
                     and (pk + ep * mid > 0):
-                total = _edge_integral(ta, tb, a, b, c, H2)
+                total = _edge_term(ta, tb, sa_, sb_, a, b, H2, delta)
         if okL[j, k]:
-            integral += delta * total
+            integral += total
     integral = integral / sgj
     return -integral / _TWO_PI
 

@@ -52,6 +52,11 @@ with a margin; Mach-inclined or superinclined panels, a singular system,
 or a non-physical pressure (Cp below vacuum or above 1.5 x the stagnation
 value on more than 1 % of the wetted area, or on a smaller area that carries
 a non-negligible load, BAD_FORCE_MAX) raise SolverError naming the case.
+Exception: compression beyond the bound on the leading-edge panels of a fin
+edge that is sonic for linear theory (:func:`_sonic_leading_edge`), where the
+theory's pressure is singular but integrable and its integrated load is the
+theory's answer; they stay in the forces (``sonic_le_out_of_range`` records
+that they left the range).
 
 Numeric-only.
 """
@@ -246,6 +251,56 @@ def _stagnation_cp(mach):
     return (p02_p1 - 1) / (0.5 * g * m2)
 
 
+def _sonic_leading_edge(panels: PanelSet, keep, fins, mach) -> np.ndarray:
+    """Fin panels at a leading edge that is sonic for linear theory (bool, kept panels).
+
+    A forward-facing fin face (n_x < -sin 1 deg: the leading-edge wedge or bevel)
+    whose edge has sweep Lambda and whose face is inclined theta_n in the plane
+    normal to the edge sees, by sweep theory (independence principle, R. T. Jones,
+    NACA Report 863, 1947), the normal Mach number M_n = M cos Lambda, where
+    linear (Ackeret) theory gives it Cp_n = 2 theta_n / sqrt|M_n^2 - 1| on the
+    normal dynamic pressure: unbounded as M_n -> 1, the sonic-edge singularity of
+    linear theory (e.g. Jones & Cohen, *High Speed Wing Theory*, 1960).  The edge
+    is flagged where that value exceeds the largest pressure the real flow can
+    have there, the stagnation value at M_n (isentropic below Mach 1, Rayleigh
+    pitot above; NACA Report 1135 eq. 44 and 100): linear theory is then outside
+    its physical range at that edge because it is near sonic."""
+    net = panels.network[keep]
+    on = np.isin(net, fins)
+    out = np.zeros(len(net), bool)
+    if not np.any(on):
+        return out
+    _, _, nrm, _ = panels.geometry(1.0)
+    nrm = nrm[keep]
+    fwd = on & (nrm[:, 0] < -np.sin(np.radians(1.0)))
+    idx = np.nonzero(fwd)[0]
+    if not len(idx):
+        return out
+    # the edge is the intersection of the face with the fin's mid-plane (least-squares
+    # plane through the fin's panel centroids, as _fin_sides): direction n x e_t
+    _, cen, _, _ = panels.geometry(1.0)
+    le = np.zeros((len(idx), 3))
+    for f in fins:
+        of_f = net[idx] == f
+        if not np.any(of_f):
+            continue
+        c_f = cen[keep][net == f]
+        e_t = np.linalg.svd(c_f - c_f.mean(axis=0))[2][2]
+        le[of_f] = np.cross(nrm[idx[of_f]], e_t)
+    le /= np.maximum(np.linalg.norm(le, axis=1), 1e-300)[:, None]
+    cos_sweep = np.sqrt(np.maximum(1.0 - le[:, 0] ** 2, 1e-12))
+    theta_n = np.arcsin(np.clip(-nrm[idx, 0] / cos_sweep, 0.0, 1.0))
+    mn = mach * cos_sweep
+    cp_lin = 2.0 * theta_n / np.sqrt(np.maximum(np.abs(mn * mn - 1.0), 1e-12))
+    g = GAMMA
+    m = np.maximum(mn, 1e-6)
+    cp_pitot = np.where(
+        m < 1.0, ((1 + 0.5 * (g - 1) * m**2) ** (g / (g - 1)) - 1) / (0.5 * g * m**2),
+        _stagnation_cp(np.maximum(m, 1.0)))
+    out[idx] = cp_lin > cp_pitot
+    return out
+
+
 class SupersonicSolver:
     """Source-panel influence matrix for one supersonic Mach number.
 
@@ -333,6 +388,11 @@ class SupersonicSolver:
         fins = np.unique(panels.network[panels.wake_upper[lifting]]) if np.any(lifting) else []
         caps = _tip_caps(panels, keep, fins)
         self._caps = caps
+        # leading-edge panels where linear theory's pressure is singular (sonic edge):
+        # integrable, their load is the theory's leading-edge load (accepted up to
+        # CAP_CP_MAX, see solve)
+        self._sonic_le = _sonic_leading_edge(panels, keep, fins, self.mach) & ~caps
+        self.sonic_le_out_of_range = False
         self._nose = (self._nrm[:, 0] < -np.sin(np.radians(1.0))) \
             & ~np.isin(panels.network[keep], fins) & ~caps
         self._tangent_cone = TangentCone(mach) if nose == "tangent-cone" else None
@@ -411,12 +471,29 @@ class SupersonicSolver:
                     f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: singular pressure on "
                     f"a fin tip cap (|Cp| up to {np.nanmax(np.abs(cap_cp)):.3g} > {CAP_CP_MAX:g}: "
                     "a Mach-cone coincidence); change the Mach number slightly or the mesh")
-            cpi = cp[sel]
-            frac = _bad_area(cpi, self._area[sel], self._cp_vac, self._cp_max)
+            # a sonic leading edge (_sonic_leading_edge): linear theory's compression
+            # there is singular (2 theta_n / sqrt|M_n^2 - 1|) but integrable, and the
+            # integrated load is the theory's answer (the lift of flat wings is
+            # continuous through the sonic-edge condition, e.g. CL_alpha = 4/B at m = 1
+            # from both sides for the delta wing, Jones & Cohen 1960): such panels above
+            # the stagnation bound stay in the forces and out of the out-of-range count
+            # while finite and below CAP_CP_MAX (a Mach-cone coincidence gives ~1e8);
+            # expansion past vacuum stays linear theory's large-angle breakdown
+            le_cp = cp[self._sonic_le]
+            if np.any(~np.isfinite(le_cp) | (np.abs(le_cp) > CAP_CP_MAX)):
+                raise SolverError(
+                    f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: singular pressure "
+                    f"at a sonic fin leading edge (|Cp| up to {np.nanmax(np.abs(le_cp)):.3g})")
+            exempt = self._sonic_le & (cp > self._cp_max)
+            if np.any(exempt):
+                self.sonic_le_out_of_range = True
+            sel_chk = sel & ~exempt
+            cpi = cp[sel_chk]
+            frac = _bad_area(cpi, self._area[sel_chk], self._cp_vac, self._cp_max)
             c = integrate_forces(cp[sel], self._cen[sel], self._nrm_f[sel], self._area[sel],
                                  sref=self.sref, lref=self.lref, xref=self.xref,
                                  symmetric=self.panels.symmetric)
-            bad_load = self._bad_load(cpi, sel)
+            bad_load = self._bad_load(cpi, sel_chk)
             if not np.all(np.isfinite(cpi)) or frac > BAD_AREA_MAX or bad_load > 1.0:
                 raise SolverError(
                     f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: non-physical "

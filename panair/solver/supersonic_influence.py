@@ -22,8 +22,10 @@ theorem with the field V = (p, q) r / (p^2 - q^2) (p = U - u, q = T - t,
 div V = 1 / r, V = 0 on the Mach cone) leaves one integral per edge:
 delta_k * Integral sqrt(R) / (R + H^2) dtau, delta_k the distance from the
 field point's projection to the edge line, R quadratic in the edge
-parameter; done in closed form (J0 - H^2 K below; our derivation, checked
-against quadrature in tests/unit/test_panair_supersonic.py).
+parameter; done in closed form (:func:`_edge_term`: J0 - H^2 K, our derivation,
+one expression continuous through sonic edges and delta_k = 0; checked against
+quadrature in tests/unit/test_panair_supersonic.py and, at and near sonic
+edges, test_panair_supersonic_sonic.py).
 
 Numeric-only.  :func:`source_potential` runs the compiled kernel of
 :mod:`.kernels` (Numba) when available; the vectorised NumPy form below is
@@ -61,38 +63,82 @@ def panel_frames(flat: np.ndarray, normal: np.ndarray):
     return e1, e2, g1
 
 
-def _antiderivative(tau, a, b, c, H2):
-    """F(tau) with F' = sqrt(R) / (R + H2), R = a tau^2 + b tau + c (> 0 where used)."""
-    R = np.maximum(a * tau**2 + b * tau + c, 0.0)
-    s = np.sqrt(R)
-    lin = np.abs(a) < 1e-12
-    a_safe = np.where(lin, 1.0, a)
-    w = tau + b / (2.0 * a_safe)
-    D = c - b**2 / (4.0 * a_safe)
-    pos = a > 0
-    # J0 = Integral dtau / sqrt(R)
-    sa = np.sqrt(np.abs(a_safe))
-    j0_pos = np.log(np.abs(sa * s + a_safe * w) + 1e-300) / sa
-    arg = np.clip(a_safe * w / np.sqrt(np.maximum(np.abs(a_safe * D), 1e-300)), -1.0, 1.0)
-    j0_neg = -np.arcsin(arg) / sa
-    b_safe = np.where(np.abs(b) > 1e-300, b, 1e-300)
-    j0_lin = 2.0 * s / b_safe
-    j0 = np.where(lin, j0_lin, np.where(pos, j0_pos, j0_neg))
-    # H2 * K, K = Integral dtau / ((R + H2) sqrt(R))
-    has_h = H2 > 1e-30
-    H2s = np.where(has_h, H2, 1.0)
-    ratio = (D + H2s) / a_safe
-    atan_case = ratio < 0
-    beta = np.sqrt(np.abs(ratio) / H2s)
-    k_atan = np.arctan2(beta * s, w) / (beta * a_safe)
-    num = w + beta * s
-    den = w - beta * s
-    k_log = -0.5 * np.log(np.abs(num) / np.maximum(np.abs(den), 1e-300) + 1e-300) / (beta * a_safe)
-    hk = np.where(atan_case, k_atan, k_log)
-    # linear R (edge along a Mach line): H2 K = 2 sqrt(H2) atan(s / sqrt(H2)) / b
-    hk_lin = 2.0 * np.sqrt(H2s) * np.arctan(s / np.sqrt(H2s)) / b_safe
-    hk = np.where(lin, hk_lin, hk)
-    return j0 - np.where(has_h, hk, 0.0)
+def _edge_term(ta, tb, s_a, s_b, a, b, H2, delta):
+    """delta * Integral_ta^tb sqrt(R) / (R + H2) dtau over one sub-interval of an
+    edge where R = a tau^2 + b tau + c > 0 (vectorised; :func:`.kernels._edge_term`
+    is the same formula, scalar).
+
+    ``s_a``, ``s_b`` = sqrt(R) at the ends (0 where an end is a root of R: exact,
+    so the result does not depend on the rounding of sqrt(R) at the Mach cone).
+    With g = a tau + b/2 (= R'/2), S = s_a + s_b, dtau = tb - ta:
+
+    * J0 = Integral dtau / sqrt(R) = (2 dtau / S) Phi(x), x = sqrt|a| dtau / S,
+      Phi = atanh(x)/x (a > 0), atan(x)/x (a < 0), 1 (a = 0, a sonic edge:
+      the edge along a Mach line, R linear).  This is the textbook
+      log / arcsin antiderivative (Gradshteyn & Ryzhik 2.261) with the
+      half-angle identities log(Z_b/Z_a) = 2 atanh((Z_b - Z_a)/(Z_b + Z_a)),
+      Z = sqrt(a) sqrt(R) + |g|, where (Z_b - Z_a)/(Z_b + Z_a) = x exactly,
+      and the arcsin difference as 2 atan2(sqrt|-a| dtau, S): one expression
+      continuous through a = 0 (no "linear edge" switch; the old closed form
+      lost ~1e-16/|a| relative near a sonic edge, 5e-4 measured).  For x >= 0.5
+      (a > 0) the equal form sign(g) log(Z_b/Z_a) / sqrt(a) is used (atanh
+      near 1 loses digits; Z is a sum of non-negative terms, no cancellation).
+    * H2 K, K = Integral dtau / ((R + H2) sqrt(R)): with the geometric identity
+      D + H2 = -delta^2 / a (D = c - b^2/(4a), delta = the edge's distance
+      from the field point's projection, since c + H2 = p^2 - q^2 and
+      b = 2 (p e_p - q e_q)), (D + H2)/a = -(delta/a)^2 <= 0, so K is always
+      the arctan form and delta H2 K = sign(delta) H [atan2(|delta| sqrt(R),
+      H g)] (H = sqrt(H2)), valid for every a including 0.  The old code's
+      log branch ((D + H2)/a > 0) is therefore reached only where rounding
+      makes (D + H2)/a >= 0, i.e. delta = 0 to rounding, where it divided
+      0/0 (an edge whose line passes through the field point's projection:
+      the edge line touches the degenerate Mach hyperbola p^2 = q^2 of the
+      point in the panel plane; Defiance, session 6).
+    * delta = 0: the term is 0, and it is the limit of the formula (delta J0
+      -> 0 also where J0 grows like log|delta| with H2 = 0; the atan2 terms of
+      one interval have the same branch, since R > 0 keeps |g| away from 0
+      for a > 0 and there is no interval for a < 0), so the influence is
+      continuous there (tests/unit/test_panair_supersonic.py checks it
+      against quadrature at and beside delta = 0 and a = 0).
+    """
+    dt = tb - ta
+    S = s_a + s_b
+    q = np.sqrt(np.abs(a))
+    S_safe = np.where(S > 0, S, 1.0)
+    x = np.where(S > 0, q * dt / S_safe, np.inf)
+    ga = a * ta + 0.5 * b
+    gb = a * tb + 0.5 * b
+    # a > 0, x < 0.5 and the series (x < 1e-4, either sign of a; error x^4/5)
+    xs = np.where((x > 0) & (x < 0.5), x, 0.5)
+    phi = np.where(x < 1e-4, 1.0 + np.copysign(x * x, a) / 3.0, np.arctanh(xs) / xs)
+    j0_ser = 2.0 * dt / S_safe * phi
+    q_safe = np.where(q > 0, q, 1.0)
+    gm = a * (0.5 * (ta + tb)) + 0.5 * b
+    j0_log = (np.copysign(1.0, gm)
+              * np.log((q * s_b + np.abs(gb) + 1e-300) / (q * s_a + np.abs(ga) + 1e-300)) / q_safe)
+    j0_atan = 2.0 * np.arctan2(q * dt, S) / q_safe
+    j0 = np.where(x < 1e-4, j0_ser, np.where(a > 0, np.where(x < 0.5, j0_ser, j0_log), j0_atan))
+    h = np.sqrt(H2)
+    ad = np.abs(delta)
+    ek = np.copysign(h, delta) * (np.arctan2(ad * s_b, h * gb) - np.arctan2(ad * s_a, h * ga))
+    return np.where(delta == 0.0, 0.0, delta * j0 - ek)
+
+
+def _roots(a, b, c):
+    """Real roots (r1, r2) of a tau^2 + b tau + c, in the cancellation-free form
+    q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2, r1 = q / a, r2 = c / q (Press et
+    al., Numerical Recipes, 3rd ed., sec. 5.6): near a sonic edge (a -> 0) the
+    textbook (-b +- sqrt(disc)) / 2a loses ~1e-16 |b| / |a| in the finite root
+    (the Mach-cone crossing), the form here tends to -c/b; a = 0 gives r1 = r2
+    = -c/b.  No real root (disc < 0): r1 = r2 = 0 and ``has`` False."""
+    disc = b * b - 4.0 * a * c
+    has = disc >= 0
+    sq = np.sqrt(np.where(has, disc, 0.0))
+    qq = -0.5 * (b + np.copysign(sq, b))
+    ok_q = qq != 0
+    r2 = np.where(ok_q, c / np.where(ok_q, qq, 1.0), 0.0)
+    r1 = np.where(a != 0, qq / np.where(a != 0, a, 1.0), r2)
+    return np.where(has, r1, 0.0), np.where(has, r2, 0.0), has
 
 
 def source_potential(points: np.ndarray, flat: np.ndarray, normal: np.ndarray,
@@ -238,28 +284,29 @@ def _pair_potential(P, jj, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, e
     b = 2.0 * (pk * ep - qk * eq)
     c = pk**2 - qk**2 - H2
     Lb = L[jj]
-    disc = b**2 - 4.0 * a * c
-    sq = np.sqrt(np.maximum(disc, 0.0))
-    lin = np.abs(a) < 1e-12
-    a_s = np.where(lin, 1.0, a)
-    r1 = np.where(lin, -c / np.where(np.abs(b) > 1e-300, b, 1e-300), (-b - sq) / (2 * a_s))
-    r2 = np.where(lin, r1, (-b + sq) / (2 * a_s))
-    has = (disc >= 0) | lin
-    r1 = np.where(has, r1, 0.0)
-    r2 = np.where(has, r2, 0.0)
-    pts = np.sort(np.stack([np.zeros_like(c), np.clip(np.minimum(r1, r2), 0, Lb),
-                            np.clip(np.maximum(r1, r2), 0, Lb), Lb], axis=-1), axis=-1)
+    r1, r2, has = _roots(a, b, c)
+    lo_raw, hi_raw = np.minimum(r1, r2), np.maximum(r1, r2)
+    lo, hi = np.clip(lo_raw, 0, Lb), np.clip(hi_raw, 0, Lb)
+    # sqrt(R) at the ends of the sub-intervals [0, lo], [lo, hi], [hi, Lb]: exactly 0
+    # at a root of R inside the edge (the Mach-cone crossing)
+    s0 = np.sqrt(np.maximum(c, 0.0))
+    sL = np.sqrt(np.maximum(a * Lb**2 + b * Lb + c, 0.0))
+    s_lo = np.where(has & (lo_raw > 0) & (lo_raw < Lb), 0.0,
+                    np.sqrt(np.maximum(a * lo**2 + b * lo + c, 0.0)))
+    s_hi = np.where(has & (hi_raw > 0) & (hi_raw < Lb), 0.0,
+                    np.sqrt(np.maximum(a * hi**2 + b * hi + c, 0.0)))
+    ends = [(np.zeros_like(c), lo, s0, s_lo), (lo, hi, s_lo, s_hi), (hi, Lb, s_hi, sL)]
     H2b = np.broadcast_to(H2, c.shape)
     total = np.zeros(c.shape)
-    for j in range(3):
-        ta, tb = pts[..., j], pts[..., j + 1]
+    # the part inside the upstream Mach cone is one of the three (the cone is convex):
+    # the last valid one, as the compiled kernel
+    for ta, tb, sa_, sb_ in ends:
         mid = 0.5 * (ta + tb)
         valid = (tb - ta > 1e-15 * (1 + Lb)) & (a * mid**2 + b * mid + c > 0) & (pk + ep * mid > 0)
         if not np.any(valid):
             continue
         v = np.nonzero(valid)
-        total[v] = (_antiderivative(tb[v], a[v], b[v], c[v], H2b[v])
-                    - _antiderivative(ta[v], a[v], b[v], c[v], H2b[v]))
-    integral = np.sum(np.where(okL[jj], delta * total, 0.0), axis=-1) / sgj
+        total[v] = _edge_term(ta[v], tb[v], sa_[v], sb_[v], a[v], b[v], H2b[v], delta[v])
+    integral = np.sum(np.where(okL[jj], total, 0.0), axis=-1) / sgj
     return -integral / _TWO_PI
 

@@ -109,20 +109,40 @@ def test_supersonic_pair_kernel_matches_separate_calls(finner, mach, mirror):
         _close(phi1, refs[1])
 
 
-def test_supersonic_pair_kernel_stops_at_the_first_nonfinite_row(finner):
-    from panair.solver.supersonic_influence import source_potential_pair
+def test_supersonic_pair_kernel_stops_at_the_first_nonfinite_row(finner, monkeypatch):
+    """The pass stops at the first row (in ``rows`` order) with a non-finite value.
+    The closed form itself returns finite limits even for a field point at infinity
+    (0, the potential's limit; checked here), so the non-finite value is injected
+    through the prepared panel constants: sqrt(g1) = 0 for the most forward panel
+    (the potential divides by it), which every aft row sees."""
+    from panair.solver import supersonic_influence as si
     flat, cen, nrm, area = finner.geometry(1.0 / np.sqrt(1.5**2 - 1.0))
     keep = finner.integrate & (panel_frames(flat, nrm)[2] > 0.05)
     flat, cen, nrm = flat[keep], cen[keep], nrm[keep]
     p0 = cen + 0.02 * np.sqrt(area[keep])[:, None] * nrm
     p1 = p0.copy()
-    aft = int(np.argmax(cen[:, 0]))               # an aft point: sees panels upstream
-    p1[aft, 0] = np.inf                           # in every Mach cone, non-finite potential
+    aft = int(np.argmax(cen[:, 0]))
+    p1[aft, 0] = np.inf                           # infinitely far downstream: potential 0
+    _, phi1, bad = si.source_potential_pair(p0, p1, flat, nrm, backend="compiled")
+    assert bad == -1 and np.all(phi1[aft] == 0.0)
+    fore = int(np.argmin(cen[:, 0]))
+    prepare = si._prepare
+
+    def poisoned(f, n):
+        out = list(prepare(f, n))
+        out[7] = out[7].copy()
+        out[7][fore] = 0.0                        # sg: the potential divides by it
+        return tuple(out)
+
+    monkeypatch.setattr(si, "_prepare", poisoned)
     rows = np.arange(len(p0))[::-1]
+    ref = si.source_potential(p0, flat, nrm, backend="numpy")
+    expect = int(rows[np.nonzero(~np.all(np.isfinite(ref), axis=1)[rows])[0][0]])
     for backend in ("compiled", "numpy"):
-        _, _, bad = source_potential_pair(p0, p1, flat, nrm, rows=rows, backend=backend)
-        assert bad == aft
-    assert source_potential_pair(p0, p0, flat, nrm, backend="compiled")[2] == -1
+        _, _, bad = si.source_potential_pair(p0, p0, flat, nrm, rows=rows, backend=backend)
+        assert bad == expect
+    monkeypatch.setattr(si, "_prepare", prepare)
+    assert si.source_potential_pair(p0, p0, flat, nrm, backend="compiled")[2] == -1
 
 
 def test_dense_to_csc_is_scipys_permuted_matrix():
