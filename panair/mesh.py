@@ -449,7 +449,14 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         # put the seam of the full circle mid-way in the widest gap between fins
         ths = np.sort([th for _, _, th in fin_angles])
         gaps = np.diff(np.append(ths, ths[0] + 2 * np.pi))
-        k = int(np.argmax(gaps))
+        # of equally wide gaps the one whose middle is nearest the x-z plane (theta 0 or
+        # pi), the first on a tie: a layout that is its own mirror image in that plane
+        # (3 fins rolled 0 deg) then gets a mirror-symmetric mesh, which the subsonic
+        # halve (panair.solver.panels.mirror_map)
+        mids = (ths + 0.5 * gaps) % np.pi
+        off_plane = np.minimum(mids, np.pi - mids)
+        widest = gaps >= gaps.max() - 1e-9
+        k = int(np.argmin(np.where(widest, np.round(off_plane, 9), np.inf)))
         theta0 = ths[k] + 0.5 * gaps[k]
         theta = theta0 + np.linspace(0.0, 2 * np.pi, n_lines)
         fin_angles = [(f, phi, theta0 + (th - theta0) % (2 * np.pi)) for f, phi, th in fin_angles]

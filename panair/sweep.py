@@ -135,7 +135,9 @@ def _solve_one(args):
     panels, mach, alphas, sref, lref, xref, rule = args[:7]
     body_mask = args[7] if len(args) > 7 else None
     try:
-        solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule)
+        # every angle is in the x-z plane: a mirror-symmetric full model solves half its panels
+        solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule,
+                             mirror=True)
     except SolverError:
         if mach < MACH_SUPERSONIC_MIN:
             raise
