@@ -64,3 +64,22 @@ def test_folded_solver_refuses_sideslip():
     s = make_solver(_panels(3, 0.0), 0.5, sref=np.pi / 4, lref=1.0, mirror=True)
     with pytest.raises(InputError, match="sideslip"):
         s.solve(0.0, np.radians(2.0))
+
+
+def test_supersonic_meshes_keep_the_first_widest_gap_for_the_seam():
+    """MeshOptions.for_mach clears mirror_seam: the supersonic mesh of 3 fins rolled
+    0 deg is laid out as before (seam mid-way between the first two fins)."""
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    geom = RocketGeometry(body, (FinGeometry(3, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=0.0),))
+    sup = OPT.for_mach(1.5)
+    assert OPT.mirror_seam and not sup.mirror_seam and sup.for_mach(2.0) is sup
+    seams = {}
+    for opt in (OPT, sup):
+        body_net = next(n for n in mesh_rocket(geom, options=opt) if n.name == "body")
+        p = body_net.points[0, -1]                      # first meridian at the last station
+        seams[opt.mirror_seam] = np.degrees(np.arctan2(p[1], -p[2])) % 360.0
+    # fins 60 deg either side of the bottom and at the top: the mirror seam is at the
+    # bottom (0 deg), the earlier one mid-way between the top fin and a lower one
+    off_bottom = {k: min(v, 360.0 - v) for k, v in seams.items()}
+    assert off_bottom[True] == pytest.approx(0.0, abs=1e-9)
+    assert off_bottom[False] == pytest.approx(120.0, abs=1e-9)
