@@ -188,8 +188,8 @@ class SubsonicSolver:
         rows = self._fold.reps if self._fold is not None else np.arange(n)
         D, S = influence_matrices(cen[rows], flat, nrm, self_index=rows)
         if panels.symmetric:
-            mirror = cen * np.array([1.0, -1.0, 1.0])
-            influence_matrices(mirror, flat, nrm, out=(D, S))
+            image = cen * np.array([1.0, -1.0, 1.0])
+            influence_matrices(image, flat, nrm, out=(D, S))
         self._Sw, self._nrm_w = None, None
         if len(panels.wake_corners):
             wflat, wcen, wnrm, _ = panels.wake_geometry(stretch)
