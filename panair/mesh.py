@@ -258,7 +258,16 @@ class MeshOptions:
     cannot solve a blunt edge; :meth:`FinGeometry.sharpened`); tip_mach :
     the supersonic Mach numbers the mesh is solved at (empty: none): a
     nose tip steeper than their Mach cones is meshed as a cone (see
-    :func:`_sharpened_tip`).
+    :func:`_sharpened_tip`); mirror_seam : the seam of a full-circle mesh goes in
+    the widest gap between fins nearest the x-z plane (else the first widest gap):
+    a layout that is its own mirror image in that plane (3 fins rolled 0 deg) is
+    then meshed as one, which the subsonic solver solves on half its panels
+    (:func:`panair.solver.panels.mirror_map`).  :meth:`for_mach` clears it for
+    supersonic Mach numbers: the supersonic solver does not halve the system (see
+    :func:`panair.solver.make_solver`) and its solution near Mach 1.2 is sensitive
+    to the layout (measured, Bella Lui: with the seam moved linear theory failed at
+    Mach 1.2, alpha 0, and the whole Mach number went to local inclination), so
+    supersonic meshes keep their earlier layout.
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -280,16 +289,19 @@ class MeshOptions:
     supersonic_span_factor: float = 2.0
     blunt_le_wedge: float = 0.0
     tip_mach: tuple = ()
+    mirror_seam: bool = True
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
 
     def for_mach(self, mach: float) -> "MeshOptions":
         """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
-        if mach <= 1.0 or (self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0):
+        if mach <= 1.0:
             return self
+        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0:
+            return replace(self, mirror_seam=False) if self.mirror_seam else self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
-                       supersonic_span_factor=1.0,
+                       supersonic_span_factor=1.0, mirror_seam=False,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE)
 
 
@@ -450,6 +462,13 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         ths = np.sort([th for _, _, th in fin_angles])
         gaps = np.diff(np.append(ths, ths[0] + 2 * np.pi))
         k = int(np.argmax(gaps))
+        if opt.mirror_seam:
+            # of equally wide gaps the one whose middle is nearest the x-z plane (theta
+            # 0 or pi), the first on a tie (MeshOptions.mirror_seam)
+            mids = (ths + 0.5 * gaps) % np.pi
+            off_plane = np.where(gaps >= gaps.max() - 1e-9,
+                                 np.round(np.minimum(mids, np.pi - mids), 9), np.inf)
+            k = int(np.argmin(off_plane))
         theta0 = ths[k] + 0.5 * gaps[k]
         theta = theta0 + np.linspace(0.0, 2 * np.pi, n_lines)
         fin_angles = [(f, phi, theta0 + (th - theta0) % (2 * np.pi)) for f, phi, th in fin_angles]

@@ -4,8 +4,10 @@ Angles are the polar aeroballistic convention: ``alpha`` is the total
 angle of attack, in the body's x-z plane (for a rocket with 4 (or any
 even number of) fins meshed with no fin in that plane).  For every Mach
 number the panels' influence matrix is built and factorised once and all
-angles are right-hand sides; Mach numbers run in parallel in a process
-pool with a progress bar.
+angles are right-hand sides (subsonic, on a full model meshed as its own mirror
+image, e.g. 3 fins rolled 0 deg: for one panel of each mirror pair,
+:class:`panair.solver.panels.MirrorFold`); Mach numbers run in parallel in a
+process pool with a progress bar.
 
 The table's axial force is ``CA = CA_pressure + CA_base``; skin friction is
 flown at the flight's own Reynolds number (:mod:`ironbark_opt.aero.model`
@@ -139,7 +141,9 @@ def _solve_one(args):
     panels, mach, alphas, sref, lref, xref, rule = args[:7]
     body_mask = args[7] if len(args) > 7 else None
     try:
-        solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule)
+        # every angle is in the x-z plane: a mirror-symmetric full model solves half its panels
+        solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule,
+                             mirror=True)
     except SolverError:
         if mach < MACH_SUPERSONIC_MIN:
             raise

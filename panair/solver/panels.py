@@ -280,3 +280,82 @@ def _attach_wake(net, edge_map, centroids, tol):
         up.extend([upper] * len(strip))
         lo.extend([lower] * len(strip))
     return np.concatenate(corners), np.array(up), np.array(lo)
+
+
+#: Largest distance [x configuration size] between a panel's mirrored corners and its
+#: twin's for :func:`mirror_map` (meshes built mirror-symmetric agree to ~1e-15)
+MIRROR_TOL = 1e-10
+
+
+def mirror_map(panels: PanelSet) -> np.ndarray | None:
+    """Mirror twins of a full model's panels in the x-z plane, or None.
+
+    ``p[i]`` is the panel whose corners are panel ``i``'s mirrored (y -> -y, within
+    MIRROR_TOL x the configuration size) with the mirrored normal (``p[i] == i`` for a
+    panel that is its own image), every wake panel has such a twin shedding from the
+    twins of its trailing-edge panels (upper and lower swapped where the twin's normal
+    is reversed: a wake in the plane), and twins agree in ``integrate``.  Then the
+    linear system of a flow symmetric in that plane (no sideslip) is invariant under
+    the permutation, its unique solution takes equal values on twins, and the solvers
+    solve it for one panel of each pair (:class:`MirrorFold`), with the same solution
+    to rounding.  None for a half model or a mesh that is not its own mirror image.
+    """
+    from scipy.spatial import cKDTree
+    if panels.symmetric or panels.n == 0:
+        return None
+    flip = np.array([1.0, -1.0, 1.0])
+    size = float(np.ptp(panels.corners.reshape(-1, 3), axis=0).max()) or 1.0
+    tol = MIRROR_TOL * size
+
+    def twins(corners):
+        flat, cen, nrm, _ = planar_corners(corners)
+        dist, p = cKDTree(cen).query(cen * flip)
+        if not np.all(dist <= tol):
+            return None, None
+        mc = corners * flip                       # every mirrored corner on a twin corner
+        gap = np.linalg.norm(mc[:, :, None, :] - corners[p][:, None, :, :], axis=-1)
+        if not np.all(gap.min(axis=2) <= tol) or not np.array_equal(p[p], np.arange(len(p))):
+            return None, None
+        return p, np.einsum("nj,nj->n", nrm[p], nrm * flip)
+
+    p, same = twins(panels.corners)
+    if p is None or np.any(same < 1 - 1e-6) or not np.array_equal(panels.integrate[p],
+                                                                  panels.integrate):
+        return None
+    if len(panels.wake_corners):
+        w, sw = twins(panels.wake_corners)
+        if w is None:
+            return None
+        up, lo = panels.wake_upper, panels.wake_lower
+        low = np.where(lo >= 0, p[np.maximum(lo, 0)], -1)
+        direct = (sw > 1 - 1e-6) & (up[w] == p[up]) & (lo[w] == low)
+        swapped = (sw < -1 + 1e-6) & (lo >= 0) & (up[w] == low) & (lo[w] == p[up])
+        if not np.all(direct | swapped):
+            return None
+    return p
+
+
+class MirrorFold:
+    """The symmetric-flow system of a mirror-symmetric mesh on one panel per twin
+    pair (``p`` from :func:`mirror_map`): rows ``reps`` (the lower index of each
+    pair), and ``fold`` adds the columns of twins, since both unknowns are equal;
+    ``expand`` copies the representatives' values to their twins."""
+
+    def __init__(self, p: np.ndarray):
+        n = len(p)
+        self.reps = np.nonzero(np.arange(n) <= p)[0]
+        pos = -np.ones(n, np.int64)
+        pos[self.reps] = np.arange(len(self.reps))
+        self.rep_of = pos[np.minimum(np.arange(n), p)]
+        self._twin = p[self.reps]
+        self._paired = self._twin != self.reps
+
+    def fold(self, M: np.ndarray) -> np.ndarray:
+        """(m, n) coefficients of all unknowns -> (m, len(reps))."""
+        out = M[:, self.reps]
+        out[:, self._paired] += M[:, self._twin[self._paired]]
+        return out
+
+    def expand(self, x: np.ndarray) -> np.ndarray:
+        """Values of the representatives (len(reps), ...) -> all panels (n, ...)."""
+        return x[self.rep_of]

@@ -37,7 +37,7 @@ from scipy.linalg import lu_factor, lu_solve
 from ironbark_opt.errors import InputError, SolverError
 
 from .influence import influence_matrices
-from .panels import PanelSet
+from .panels import MirrorFold, PanelSet, mirror_map
 from .pressure import integrate_forces, pressure_coefficient, surface_gradient
 
 __all__ = ["SubsonicSolver", "PanelResult", "MACH_SUBSONIC_MAX"]
@@ -157,10 +157,16 @@ class SubsonicSolver:
     pressure_rule : str
         See :func:`panair.solver.pressure.pressure_coefficient`
         (default second-order, PANAIR's default).
+    mirror : bool
+        Only flows without sideslip will be solved: on a full model whose mesh is its
+        own mirror image in the x-z plane (:func:`panair.solver.panels.mirror_map`)
+        the system is set up and factorised for one panel of each mirror pair (half
+        the influence coefficients, an eighth of the LU; the same solution to
+        rounding).  Sideslip then raises InputError, as on a half model.
     """
 
     def __init__(self, panels: PanelSet, mach: float, *, sref: float, lref: float,
-                 xref: float = 0.0, pressure_rule: str = "second-order"):
+                 xref: float = 0.0, pressure_rule: str = "second-order", mirror: bool = False):
         if not 0.0 <= mach <= MACH_SUBSONIC_MAX:
             raise InputError(f"subsonic solver needs 0 <= Mach <= {MACH_SUBSONIC_MAX}, got {mach} "
                              "(transonic Mach numbers are bridged, supersonic ones need the "
@@ -177,14 +183,17 @@ class SubsonicSolver:
         flat, cen, nrm, area = panels.geometry(stretch)
         self._cen_t, self._nrm_t = cen, nrm
         n = panels.n
-        D, S = influence_matrices(cen, flat, nrm, self_index=np.arange(n))
+        twins = mirror_map(panels) if mirror else None
+        self._fold = MirrorFold(twins) if twins is not None else None
+        rows = self._fold.reps if self._fold is not None else np.arange(n)
+        D, S = influence_matrices(cen[rows], flat, nrm, self_index=rows)
         if panels.symmetric:
-            mirror = cen * np.array([1.0, -1.0, 1.0])
-            influence_matrices(mirror, flat, nrm, out=(D, S))
+            image = cen * np.array([1.0, -1.0, 1.0])
+            influence_matrices(image, flat, nrm, out=(D, S))
         self._Sw, self._nrm_w = None, None
         if len(panels.wake_corners):
             wflat, wcen, wnrm, _ = panels.wake_geometry(stretch)
-            Dw, Sw = influence_matrices(cen, wflat, wnrm)
+            Dw, Sw = influence_matrices(cen[rows], wflat, wnrm)
             if panels.symmetric:
                 influence_matrices(cen * np.array([1.0, -1.0, 1.0]), wflat, wnrm, out=(Dw, Sw))
             low = panels.wake_lower >= 0
@@ -200,7 +209,7 @@ class SubsonicSolver:
                 self._Sw is not None and not np.all(np.isfinite(self._Sw))):
             raise SolverError(f"Mach {mach}: non-finite influence coefficients "
                               "(coincident or degenerate panels in the mesh)")
-        self._lu = RefinedLU(D)
+        self._lu = RefinedLU(D if self._fold is None else self._fold.fold(D))
         diag = self._lu.pivots()
         if diag.min() < 1e-10 * diag.max():
             raise SolverError(f"Mach {mach}: singular influence matrix "
@@ -225,9 +234,10 @@ class SubsonicSolver:
         """
         alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
                                           np.atleast_1d(np.asarray(beta, float)))
-        if self.panels.symmetric and np.any(beta != 0.0):
-            raise InputError("a half model (symmetric=True) cannot be solved in sideslip; "
-                             "mesh the full configuration", field="beta")
+        if (self.panels.symmetric or self._fold is not None) and np.any(beta != 0.0):
+            raise InputError("a half model (symmetric=True) or a solver set up with mirror=True "
+                             "cannot be solved in sideslip; mesh the full configuration",
+                             field="beta")
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])     # (k, 3)
         vt = v / np.array([self.beta_pg, 1.0, 1.0])                           # stretched free stream
         sigma = -(self._nrm_t @ vt.T)                                         # (n, k)
@@ -235,6 +245,8 @@ class SubsonicSolver:
         if self._Sw is not None:
             rhs -= self._Sw @ -(self._nrm_w @ vt.T)
         mu = self._lu.solve(rhs)
+        if self._fold is not None:
+            mu = self._fold.expand(mu)
         out = []
         for k in range(len(alpha)):
             g = surface_gradient(mu[:, k], self._cen_t, self._nrm_t, self.panels.neighbours)

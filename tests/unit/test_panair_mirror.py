@@ -1,0 +1,85 @@
+"""Mirror-symmetric full models solved on half their panels (subsonic): the mesh of
+a layout that is its own mirror image in the x-z plane (3 fins rolled 0 deg) is,
+panel for panel, and the folded system gives the full system's solution to
+rounding (the unique solution of a mirror-invariant system is mirror-symmetric)."""
+import numpy as np
+import pytest
+
+from ironbark_opt.errors import InputError
+from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
+from panair.solver import build_panels, make_solver
+from panair.solver.panels import MirrorFold, mirror_map
+
+OPT = MeshOptions(n_theta=12, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
+
+
+def _panels(count, roll_deg, symmetric=False):
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    fins = (FinGeometry(count, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.radians(roll_deg)),)
+    nets = mesh_rocket(RocketGeometry(body, fins), symmetric=symmetric, options=OPT)
+    return build_panels(nets, symmetric=symmetric)
+
+
+def test_three_fins_rolled_0_are_meshed_as_their_own_mirror_image():
+    panels = _panels(3, 0.0)
+    p = mirror_map(panels)
+    assert p is not None
+    np.testing.assert_array_equal(p[p], np.arange(panels.n))
+    flip = np.array([1.0, -1.0, 1.0])
+    c = panels.corners.mean(axis=1)
+    size = np.ptp(panels.corners.reshape(-1, 3), axis=0).max()
+    assert np.abs(c[p] - c * flip).max() < 1e-12 * size
+    fold = MirrorFold(p)
+    assert panels.n / 2 <= len(fold.reps) < 0.55 * panels.n    # few panels are their own image
+    # not mirror images: 3 fins rolled 90 deg (a fin at +y, none at -y), a half model
+    assert mirror_map(_panels(3, 90.0)) is None
+    assert mirror_map(_panels(4, 45.0, symmetric=True)) is None
+
+
+def test_a_moved_corner_breaks_the_mirror_map():
+    panels = _panels(3, 0.0)
+    panels.corners[5, 2, 1] += 1e-7                  # 1e-8 of the rocket's length
+    assert mirror_map(panels) is None
+
+
+@pytest.mark.parametrize("mach", [0.05, 0.7])
+def test_folded_subsonic_solve_is_the_full_solve(mach):
+    panels = _panels(3, 0.0)
+    alpha = np.radians([0.0, 4.0, 12.0])
+    full = make_solver(panels, mach, sref=np.pi / 4, lref=1.0, xref=5.0).solve(alpha)
+    half = make_solver(panels, mach, sref=np.pi / 4, lref=1.0, xref=5.0,
+                       mirror=True).solve(alpha)
+    # each coefficient to 1e-11 of its range over the angles (as the tables are compared)
+    for name in ("CA", "CN", "Cm"):
+        f, h = (np.array([getattr(r, name) for r in res]) for res in (full, half))
+        assert np.abs(h - f).max() < 1e-11 * np.abs(f).max()
+    for f, h in zip(full, half):
+        # both solutions are mirror-symmetric, the folded one by construction
+        np.testing.assert_allclose(h.mu, f.mu, rtol=0, atol=1e-11 * np.abs(f.mu).max())
+        np.testing.assert_allclose(h.cp, f.cp, rtol=0, atol=1e-10 * np.abs(f.cp).max())
+        assert abs(h.CY) < 1e-12 and abs(f.CY) < 1e-9
+
+
+def test_folded_solver_refuses_sideslip():
+    s = make_solver(_panels(3, 0.0), 0.5, sref=np.pi / 4, lref=1.0, mirror=True)
+    with pytest.raises(InputError, match="sideslip"):
+        s.solve(0.0, np.radians(2.0))
+
+
+def test_supersonic_meshes_keep_the_first_widest_gap_for_the_seam():
+    """MeshOptions.for_mach clears mirror_seam: the supersonic mesh of 3 fins rolled
+    0 deg is laid out as before (seam mid-way between the first two fins)."""
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    geom = RocketGeometry(body, (FinGeometry(3, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=0.0),))
+    sup = OPT.for_mach(1.5)
+    assert OPT.mirror_seam and not sup.mirror_seam and sup.for_mach(2.0) is sup
+    seams = {}
+    for opt in (OPT, sup):
+        body_net = next(n for n in mesh_rocket(geom, options=opt) if n.name == "body")
+        p = body_net.points[0, -1]                      # first meridian at the last station
+        seams[opt.mirror_seam] = np.degrees(np.arctan2(p[1], -p[2])) % 360.0
+    # fins 60 deg either side of the bottom and at the top: the mirror seam is at the
+    # bottom (0 deg), the earlier one mid-way between the top fin and a lower one
+    off_bottom = {k: min(v, 360.0 - v) for k, v in seams.items()}
+    assert off_bottom[True] == pytest.approx(0.0, abs=1e-9)
+    assert off_bottom[False] == pytest.approx(120.0, abs=1e-9)
