@@ -80,6 +80,20 @@ def mass_properties(setup, t, P, motor=None, motor_props=None):
     return m, x_cg, inertia
 
 
+def _burnt_out(motor):
+    """A solid motor's (propellant mass, cg, (I_t, I_a)) after burnout, as numbers: the
+    coast phase starts at burnout (phases are split there), where the mass model's
+    impulse has reached the total, so the coast needs no thrust-curve look-up.  None for
+    other motors and for a motor slot (its data are symbols)."""
+    from ironbark_opt.motors.solid import SolidMotor
+
+    if not isinstance(motor, SolidMotor) or not isinstance(motor.burn_time, (int, float)):
+        return None
+    props = motor._mass_properties_unscaled(float(motor.burn_time))
+    flat = [props[0], props[1], *props[2]]
+    return props if all(isinstance(v, float) for v in flat) else None
+
+
 def mass_rates(setup, t, P, motor, m, inertia):
     """d(mass)/dt [kg/s] and d(inertia)/dt (3x3) [kg m^2/s] of :func:`mass_properties`'
     ``m`` and ``inertia`` at symbolic ``t``.
@@ -158,7 +172,8 @@ def build(setup, phase: str, cd_area: float = 0.0, n_p: int = params.SIZE) -> ca
     motor = setup.motor.bind(p) if hasattr(setup.motor, "bind") else setup.motor
     burning = phase in ("rail", "boost")
 
-    m, x_cg, inertia = mass_properties(setup, t, P, motor)
+    burnt = _burnt_out(motor) if phase == "coast" else None
+    m, x_cg, inertia = mass_properties(setup, t, P, motor, burnt)
     s = _aero_state(setup, x, P)
     g = setup.gravity(s["h"]) if setup.gravity is not None else gravity(s["h"], setup.latitude)
     g_l = ca.vertcat(0, 0, -g)
@@ -214,7 +229,7 @@ def build(setup, phase: str, cd_area: float = 0.0, n_p: int = params.SIZE) -> ca
         damp = 0.25 * s["rho"] * s["airspeed"] * area * dref ** 2
         m_damp = damp * ca.vertcat(clp * w_b[0], cmq * w_b[1], cmq * w_b[2])
         m_roll = ca.vertcat(qs * dref * cl_forcing, 0, 0)
-        mdot, idot = mass_rates(setup, t, P, motor, m, inertia)
+        mdot, idot = (0, ca.SX.zeros(3, 3)) if burnt is not None else mass_rates(setup, t, P, motor, m, inertia)
         l_ne = setup.nozzle_x - x_cg
         m_jet = mdot * l_ne ** 2 * ca.vertcat(0, w_b[1], w_b[2])
         moment = m_aero + m_damp + m_roll + m_jet - ca.cross(w_b, inertia @ w_b) - idot @ w_b
