@@ -217,7 +217,7 @@ class AeroModel:
     def _barrowman(self, mach, alpha):
         s0, s1, _, _, _ = self._sums(mach)
         x_cp = s1 / s0
-        s = m.sin(alpha)
+        s = m.sin_angle(alpha)
         cn_lin = s0 * s
         cn_body = self.body_lift_k * self.lift.planform_area / self.reference_area * s * s
         cn = cn_lin + cn_body
