@@ -166,8 +166,11 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     spec = load_spec(spec_path)
     from ironbark_opt.plausibility import check_ascent_stability
     margin = check_ascent_stability(setup, overrides, allow_unstable=allow_unstable)   # before the samples
+    if progress is None:                        # a bar only where someone watches it
+        progress = sys.stderr.isatty()
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
-                      progress=sys.stderr.isatty() if progress is None else progress, parameters=overrides, jit="auto" if jit is None else jit, executor=executor, output=results_dir)
+                      progress=progress, parameters=overrides, jit="auto" if jit is None else jit,
+                      executor=executor, output=results_dir)
     if csv_path:
         atomic_write(csv_path, lambda tmp: write_samples(disp, tmp))
     if samples_path:
