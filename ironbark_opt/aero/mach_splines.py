@@ -147,10 +147,13 @@ def _piecewise_cubic(name: str, edges: np.ndarray, grids, curves) -> ca.Function
     i = ca.low(ca.DM(edges), mach, {"lookup_mode": "binary"})   # interval, clamped to [0, n - 1]
     col = ca.MX(ca.DM(table))[:, i]
     u = mach - col[0]
-    y = col[1:1 + m]
-    for j in range(1, DEGREE + 1):
-        y = y * u + col[1 + j * m:1 + (j + 1) * m]
-    return ca.Function(name, [mach], [y], {"never_inline": True})
+    out = []
+    for k in range(m):                 # scalar Horner per output: register code in C
+        y = col[1 + k]
+        for j in range(1, DEGREE + 1):
+            y = y * u + col[1 + j * m + k]
+        out.append(y)
+    return ca.Function(name, [mach], [ca.vertcat(*out)], {"never_inline": True})
 
 
 def _band_ldl(band: np.ndarray) -> tuple[list, list]:
