@@ -210,7 +210,7 @@ class FlightModel:
     def _library_twin(self) -> "FlightModel":
         """This model built again with the Mach tables in piecewise-polynomial form
         (:func:`~ironbark_opt.aero.mach_splines.table_form`: the same splines to ~1e-15,
-        ~1/3 of the B-splines' cost in C; the VM keeps the B-splines, whose tables are
+        ~1/6 of the B-splines' cost in C; the VM keeps the B-splines, whose tables are
         no per-call copy): the right-hand sides, their RK4 steps, the phase trajectories
         on this grid and the events (~0.3 s, only where a library is compiled).  What the
         compiled library holds comes from it (:meth:`_library_functions`, and the robust
