@@ -64,6 +64,17 @@ fmin = _two("minimum", "fmin")
 power = _two("power", "power")
 
 
+def sin_angle(alpha):
+    """``sin(alpha)``; symbolic-safe.  For a CasADi SX ``alpha = atan2(y, x)`` (the
+    flight's angle of attack) it is ``y / sqrt(x^2 + y^2)``, the same number to
+    rounding without evaluating atan2 and sin (in the RK4 step the angle itself is then
+    no longer needed: ~7 % of a compiled coast step)."""
+    if isinstance(alpha, ca.SX) and alpha.is_scalar() and alpha.is_op(ca.OP_ATAN2):
+        y, x = alpha.dep(0), alpha.dep(1)
+        return y / ca.sqrt(x * x + y * y)
+    return sin(alpha)
+
+
 def if_else(cond, a, b):
     """Symbolic-safe ``cond ? a : b`` (evaluates both branches)."""
     if is_symbolic(cond, a, b):

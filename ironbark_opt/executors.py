@@ -575,7 +575,13 @@ def fly_samples(setup, P: np.ndarray, *, descent: bool = False, chunk: int = 250
         else:
             steps = discretisation(model)
             func = fly_chunk
-            tasks = [(payload, steps, P[:, a:b], a, bool(descent), jit_mode(jit)) for a, b in bounds]
+            mode = jit_mode(jit)
+            if mode == "auto" and getattr(model, "_one_library", False):
+                # workers fly what this process flies: its compiled library (loaded from the
+                # cache, else compiled) or the VM, whose Mach tables differ from the
+                # library's in the last bits (dynamics.model.FlightModel._library_twin)
+                mode = bool(model._lib)
+            tasks = [(payload, steps, P[:, a:b], a, bool(descent), mode) for a, b in bounds]
         cb = None if on_chunk is None else (lambda i, _k: on_chunk(bounds[i][1] - bounds[i][0]))
         parts = run_chunks(ex, func, tasks, store=store, on_chunk=cb, label="montecarlo")
     cols = {key: np.concatenate([p[key] for p in parts]) for key in parts[0]}

@@ -21,15 +21,44 @@ interval, exact because each curve lies in the spline space; banded normal
 equations with one step of iterative refinement) to the curves' own CasADi
 B-splines, so it reproduces the splines the flight used before (measured
 ~1e-15 relative, ``tests/unit/test_mach_splines.py``).
+
+Compiled code (C) reads the same splines in piecewise-polynomial form instead
+(:func:`table_form`, de Boor, ch. VII: between consecutive knots a cubic spline
+is one cubic polynomial): an interval search and one Horner evaluation per
+output, ~1/6 of the B-spline's de Boor recursion in C (callgrind).  Its table of coefficients is
+a constant that the CasADi virtual machine would copy on every call (~17,000
+numbers), so the VM keeps the B-spline; both agree to ~1e-15.
 """
 from __future__ import annotations
 
 from collections.abc import Sequence
+from contextlib import contextmanager
 
 import casadi as ca
 import numpy as np
 
 DEGREE = 3
+#: the form :func:`merged_spline` builds: "bspline" (default) or "pp" (see :func:`table_form`)
+_FORM = ["bspline"]
+
+
+@contextmanager
+def table_form(form: str):
+    """Inside this block :func:`merged_spline` (and so the flight's right-hand sides
+    built meanwhile) uses ``form``: "pp", the piecewise-polynomial table for generated
+    C code, or "bspline"."""
+    if form not in ("bspline", "pp"):
+        raise ValueError(f"form must be 'bspline' or 'pp', got {form!r}")
+    _FORM.append(form)
+    try:
+        yield
+    finally:
+        _FORM.pop()
+
+
+def current_form() -> str:
+    """The form :func:`merged_spline` builds now (see :func:`table_form`)."""
+    return _FORM[-1]
 
 
 def spline_knots(grid: np.ndarray, degree: int = DEGREE) -> np.ndarray:
@@ -90,10 +119,41 @@ def merged_spline(name: str, grids: Sequence[np.ndarray],
     factor = _band_ldl(band)
     coef = _band_solve(factor, normal(target))
     coef = coef + _band_solve(factor, normal(target - apply(coef)))
+    if current_form() == "pp":
+        return _piecewise_cubic(name, edges, grids, curves), float(lo), float(hi)
     # never inlined: an SX graph calls it as one node (its B-spline is an MX node)
     fn = ca.Function.bspline(name, [knots.tolist()], coef.ravel().tolist(), [DEGREE], coef.shape[1],
                              {"lookup_mode": ["binary"], "never_inline": True})
     return fn, float(lo), float(hi)
+
+
+def _piecewise_cubic(name: str, edges: np.ndarray, grids, curves) -> ca.Function:
+    """``mach -> (outputs of every curve)`` as one cubic per interval of ``edges`` (every
+    curve is one cubic there): coefficients fitted at 4 Chebyshev nodes per interval (a
+    4 x 4 Vandermonde solve in s = (x - a) / h, exact to rounding), evaluated by an
+    interval search (binary) and Horner's rule in u = x - a, all outputs at once."""
+    h = np.diff(edges)
+    s = (1 - np.cos((2 * np.arange(DEGREE + 1) + 1) * np.pi / (2 * DEGREE + 2))) / 2
+    x = (edges[:-1, None] + h[:, None] * s[None, :]).ravel()
+    values = np.vstack([np.array(f(np.clip(x, g[0], g[-1])[None, :])).reshape(-1, x.size)
+                        for g, f in zip(grids, curves)])                     # (m, 4 n)
+    m, n = values.shape[0], edges.size - 1
+    vander = np.vander(s, DEGREE + 1, increasing=True)
+    local = np.linalg.solve(vander, values.reshape(m, n, DEGREE + 1).transpose(2, 1, 0).reshape(DEGREE + 1, -1))
+    coef = local.reshape(DEGREE + 1, n, m) / h[None, :, None] ** np.arange(DEGREE + 1)[:, None, None]
+    # one column per interval: its left edge, then the coefficients of u^3, u^2, u, 1 (m each)
+    table = np.vstack([edges[:-1][None, :], coef[::-1].transpose(0, 2, 1).reshape(m * (DEGREE + 1), n)])
+    mach = ca.MX.sym("mach")
+    i = ca.low(ca.DM(edges), mach, {"lookup_mode": "binary"})   # interval, clamped to [0, n - 1]
+    col = ca.MX(ca.DM(table))[:, i]
+    u = mach - col[0]
+    out = []
+    for k in range(m):                 # scalar Horner per output: register code in C
+        y = col[1 + k]
+        for j in range(1, DEGREE + 1):
+            y = y * u + col[1 + j * m + k]
+        out.append(y)
+    return ca.Function(name, [mach], [ca.vertcat(*out)], {"never_inline": True})
 
 
 def _band_ldl(band: np.ndarray) -> tuple[list, list]:

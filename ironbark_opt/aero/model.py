@@ -109,7 +109,7 @@ class AeroModel:
         a pickle (the flight-model cache key) depends on the data, not on past use."""
         state = dict(self.__dict__)
         state.pop("_sums_fn", None)
-        state.pop("_mach_fn", None)
+        state.pop("_mach_fns", None)
         return state
 
     def _sums_exact(self, mach):
@@ -170,18 +170,21 @@ class AeroModel:
         coefficients), each clamped to its own grid, from one B-spline call
         (:func:`~ironbark_opt.aero.mach_splines.merged_spline`: the same splines to
         rounding; one knot search and basis evaluation per RK4 stage instead of one per
-        table)."""
-        cached = self.__dict__.get("_mach_fn")
+        table), or, inside :func:`~ironbark_opt.aero.mach_splines.table_form` ``("pp")``,
+        from one piecewise-cubic table (for generated C code)."""
+        from ironbark_opt.aero.mach_splines import current_form
+        cache = self.__dict__.setdefault("_mach_fns", {})     # per form (mach_splines.table_form)
+        cached = cache.get(current_form())
         if cached is None:
             names = self._merged_drag()
-            if not names:                  # nothing to share a call with: the lift sums' own spline
+            if not names and current_form() == "bspline":   # nothing to share a call with: the sums' own
                 cached = self._sums_function(), float(LIFT_MACH_GRID[0]), float(LIFT_MACH_GRID[-1])
             else:
                 from ironbark_opt.aero.mach_splines import merged_spline
                 splines = [self.table._spline(n) for n in names]
                 cached = merged_spline("mach_tables", [LIFT_MACH_GRID] + [sp.axes[0] for sp in splines],
                                        [self._sums_function()] + [sp.casadi_interpolant() for sp in splines])
-            object.__setattr__(self, "_mach_fn", cached)
+            cache[current_form()] = cached
         fn, lo, hi = cached
         return fn(m.clip(mach, lo, hi))
 
@@ -194,7 +197,10 @@ class AeroModel:
             name = "CA_power_on" if (power_on and t.has("CA_power_on")) else "CA"
             # from the merged spline where the step reads the lift sums too (a symbolic angle
             # of attack); the rail phase (alpha = 0, no lift sums) keeps the drag curve's own
-            merged = self._merged_drag() if m.is_symbolic(mach) and m.is_symbolic(alpha) and mach.numel() == 1 else ()
+            # B-spline, but not in the piecewise-cubic form (one table call costs less there)
+            from ironbark_opt.aero.mach_splines import current_form
+            shared = m.is_symbolic(alpha) or current_form() == "pp"
+            merged = self._merged_drag() if m.is_symbolic(mach) and shared and mach.numel() == 1 else ()
             if name in merged:
                 ca_coef = ca_coef + self._mach_tables(mach)[5 + merged.index(name)]
             else:
@@ -211,7 +217,7 @@ class AeroModel:
     def _barrowman(self, mach, alpha):
         s0, s1, _, _, _ = self._sums(mach)
         x_cp = s1 / s0
-        s = m.sin(alpha)
+        s = m.sin_angle(alpha)
         cn_lin = s0 * s
         cn_body = self.body_lift_k * self.lift.planform_area / self.reference_area * s * s
         cn = cn_lin + cn_body

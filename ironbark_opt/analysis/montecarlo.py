@@ -12,6 +12,7 @@ Numeric-only.
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -203,6 +204,22 @@ def _check(samples, chunk, executor, target, band):
             raise InputError(f"band must be a positive number [m], got {band!r}", field="band")
 
 
+@contextlib.contextmanager
+def _progress_bar(total: int, show: bool):
+    """A tqdm bar on stderr (``bar.update(n)``), or a no-op without importing tqdm (~30 ms)."""
+    if not show:
+        yield _NoBar()
+        return
+    from tqdm.autonotebook import tqdm   # tqdm.auto adds asyncio support (0.25 s import), unused here
+    with tqdm(total=total, desc="Monte Carlo", unit="flight", leave=False) as bar:
+        yield bar
+
+
+class _NoBar:
+    def update(self, n: int = 1) -> None:
+        pass
+
+
 def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: bool = False, target=None,
                band: float | None = None, chunk: int = 250, executor=None, progress: bool = True,
                parameters: Mapping[str, float] | None = None, jit="auto", model=None,
@@ -249,8 +266,6 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
     -------
     Dispersion
     """
-    from tqdm.autonotebook import tqdm   # tqdm.auto adds asyncio support (0.25 s import), unused here
-
     _check(samples, chunk, executor, target, band)
     if not isinstance(spec, DispersionSpec):
         if not isinstance(spec, (str, Path)):
@@ -266,7 +281,7 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
     p_nom = setup.nominal_parameters(**dict(parameters or {}))
     P = spec.sample(int(samples), p_nom, np.random.default_rng(seed))
     from ironbark_opt.executors import fly_samples
-    with tqdm(total=int(samples), desc="Monte Carlo", unit="flight", disable=not progress, leave=False) as bar:
+    with _progress_bar(int(samples), progress) as bar:
         out = fly_samples(setup, P, descent=descent, chunk=int(chunk), executor=executor, output=output, jit=jit,
                           model=model, on_chunk=bar.update)
     x_a = out["x_apogee"]

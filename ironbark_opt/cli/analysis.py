@@ -1,6 +1,8 @@
 """``ironbark sensitivity ROCKET`` and ``ironbark montecarlo ROCKET``."""
 from __future__ import annotations
 
+import sys
+
 import click
 
 from ironbark_opt.cli.common import (PLOT_SUFFIXES, apply_forecast, atmosphere_load_kwargs,
@@ -118,7 +120,8 @@ def sensitivity_command(rocket, target, names, rail_exit, config, table, ballast
               help="Where the chunks run: this process, N local processes, or a Dask scheduler.")
 @click.option("--results-dir", "results_dir", type=click.Path(file_okay=False),
               help="Stream each chunk to a Parquet file here; re-running into it resumes.")
-@click.option("--progress/--no-progress", default=True, help="Progress bar on stderr.")
+@click.option("--progress/--no-progress", default=None,
+              help="Progress bar on stderr (default: when stderr is a terminal).")
 @click.option("--csv", "csv_path", type=_FILE_OUT, help="Write every sample (parameters and results).")
 @click.option("--samples-out", "samples_path", type=_FILE_OUT,
               help="Write every sample to .csv or .parquet (Parquet needs pyarrow).")
@@ -163,8 +166,11 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
     spec = load_spec(spec_path)
     from ironbark_opt.plausibility import check_ascent_stability
     margin = check_ascent_stability(setup, overrides, allow_unstable=allow_unstable)   # before the samples
+    if progress is None:                        # a bar only where someone watches it
+        progress = sys.stderr.isatty()
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
-                      progress=progress, parameters=overrides, jit="auto" if jit is None else jit, executor=executor, output=results_dir)
+                      progress=progress, parameters=overrides, jit="auto" if jit is None else jit,
+                      executor=executor, output=results_dir)
     if csv_path:
         atomic_write(csv_path, lambda tmp: write_samples(disp, tmp))
     if samples_path:

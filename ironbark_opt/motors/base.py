@@ -144,6 +144,14 @@ class Motor(abc.ABC):
         """(F0(tau), mass properties at tau); override to share work."""
         return self._thrust_unscaled(tau), self._mass_properties_unscaled(tau)
 
+    def mass_driver(self, t, time_scale=1.0):
+        """``(d, d_dot, props)`` when the mass properties depend on time only through
+        one scalar ``d(t)`` whose rate ``d_dot`` is known in closed form, with
+        ``props(d)`` -> (propellant mass, cg, (I_t, I_a)) as
+        :meth:`_mass_properties_unscaled`; else None (the flight then differentiates
+        the mass histories symbolically).  Symbolic-safe; ``time_scale`` as in :meth:`thrust`."""
+        return None
+
     def pressure_thrust_correction(self, p_ambient):
         """Thrust change [N] from ambient pressure ``p_ambient`` [Pa] differing
         from the pressure the curve was measured at. Symbolic-safe.

@@ -354,6 +354,13 @@ class SolidMotor(Motor):
         """(m_p [kg], cg [m], (I_t, I_a) [kg m^2]) at tau; symbolic-safe."""
         return self._mass_properties_from_impulse(self._impulse_unscaled(tau))
 
+    def mass_driver(self, t, time_scale=1.0):
+        """The delivered impulse drives the mass (see the module doc): ``d = I0(t / s)``,
+        ``d_dot = F0(t / s) / s`` (I0' = F0, 0 outside the burn like F0), from the same
+        table look-up as the thrust, so the mass rate needs no derivative of the table."""
+        f, i = self._curve(t / time_scale)
+        return i, f / time_scale, self._mass_properties_from_impulse
+
     def _mass_properties_from_impulse(self, impulse):
         """Mass properties once the delivered impulse [N s] is known."""
         mp0, md = self._mp0, self.dry_mass

@@ -77,10 +77,13 @@ def compiled_derivative_function(model, free_position: bool) -> ca.Function:
         func = cached_library(f"robust_ascent_{k}", key) if model.jit and key is not None else None
         if func is None:
             func = ascent_derivative_function(model, free_position)
+            # compiled from the ascent the model's library holds (its Mach tables in C form),
+            # so compiled apogees are the compiled Monte Carlo's to the bit
+            source = model._library_twin() if model.jit and getattr(model, "_one_library", False) else model
             if model.jit == "auto" and key is not None:
-                compile_detached(func, key)
+                compile_detached(ascent_derivative_function(source, free_position), key)
             elif model.jit:
-                func = compile_function(func, key=key)
+                func = compile_function(ascent_derivative_function(source, free_position), key=key)
         cache[slot] = func
     return cache[slot]
 
