@@ -34,19 +34,16 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from ironbark_opt import params
+from ironbark_opt.dynamics.constants import G0, RAIL_TOL_M
 from ironbark_opt.dynamics.frames import rotation_matrix
 from ironbark_opt.dynamics.integrator import grid_fractions
 
-#: rail-exit residual accepted [m] (as ``FlightModel._rail_exit``)
-RAIL_TOL_M = 1e-10
 #: rail passes after the bracketing one (conditional: only the needed ones run)
 RAIL_ITERATIONS = 8
 #: coast steps per conditionally evaluated chunk
 COAST_CHUNK = 10
 #: rows of the ``ev`` output
 EV = ("t_rail", "g_rail", "g_bracket", "t_burnout", "vz_burnout", "t_end", "k", "found", "t_k", "h", "rail_passes")
-G0 = 9.80665   # [m/s^2] standard gravity, the horizon's first guess (as in model.py)
 
 
 def _rail_pass(model) -> ca.Function:
@@ -107,7 +104,7 @@ def ascent_functions(model) -> tuple[ca.Function, ca.Function]:
     nr, nc = model.steps.n_rail, model.n_coast
     p = ca.MX.sym("p", model.n_p)
     x0, e = model._launch(p)
-    d = p[params.index("rail_length")] - model.setup.rail_exit_offset
+    d = model.rail_exit_distance(p)
     burn = model.burn_time(p)
     rail = _rail_pass(model)
 
