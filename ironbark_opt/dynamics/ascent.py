@@ -34,6 +34,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
+from ironbark_opt.dynamics.buffered import Buffered
 from ironbark_opt.dynamics.constants import G0, RAIL_TOL_M
 from ironbark_opt.dynamics.frames import rotation_matrix
 from ironbark_opt.dynamics.integrator import grid_fractions
@@ -178,27 +179,19 @@ def applies(ev) -> np.ndarray:
 
 
 class AscentRunner:
-    """Calls an ascent Function through a CasADi buffer: NumPy arrays in and out,
-    no DM conversions.  ``__call__(p)`` returns a dict of fresh arrays."""
+    """Calls an ascent Function through a CasADi buffer (:class:`~ironbark_opt.dynamics.buffered.Buffered`):
+    NumPy arrays in and out, no DM conversions.  ``__call__(p)`` returns a dict of fresh arrays
+    (None when the evaluation fails)."""
 
     def __init__(self, func: ca.Function):
         self.func = func
-        self._buf, self._eval = func.buffer()
-        self._p = np.zeros(func.size1_in(0))
-        self._buf.set_arg(0, memoryview(self._p))
-        self._out = []
-        for i in range(func.n_out()):
-            # column-major (rows x cols) = C-order (cols x rows): the transpose is the matrix
-            arr = np.zeros((func.size2_out(i), func.size1_out(i)))
-            self._buf.set_res(i, memoryview(arr))
-            self._out.append(arr)
+        self._buffered = Buffered(func)
 
     def __call__(self, p: np.ndarray) -> dict | None:
-        self._p[:] = p
-        self._eval()
-        if self._buf.ret() != 0:
+        out = self._buffered.evaluate([p])
+        if out is None:
             return None
-        ev, x0, X_r, X_b, X_c, x_a = (a.T.copy() for a in self._out)
-        out = dict(zip(EV, ev[:, 0]))
-        out.update(x0=x0[:, 0], X_rail=X_r, X_boost=X_b, X_coast=X_c, x_apogee=x_a[:, 0])
-        return out
+        ev, x0, X_r, X_b, X_c, x_a = out
+        r = dict(zip(EV, ev[:, 0]))
+        r.update(x0=x0[:, 0], X_rail=X_r, X_boost=X_b, X_coast=X_c, x_apogee=x_a[:, 0])
+        return r

@@ -264,9 +264,9 @@ _PENDING_S = 600.0
 #: processes, so ``nice`` alone does not make it yield: its session's group gets nice 19
 #: too (``/proc/self/autogroup``, sched(7)).  Without it a first run that starts a
 #: compile measured 1.4-1.8x the VM path's wall time on a loaded machine.
+#: The shell sets it (the group is the session's, so the Python or compiler it then
+#: execs keeps it): once, before anything else of the child runs.
 _LOWEST_GROUP_SH = "(echo 19 > /proc/self/autogroup) 2>/dev/null; "
-_LOWEST_GROUP_PY = ("try:\n    open('/proc/self/autogroup', 'w').write('19')\n"
-                    "except OSError:\n    pass\n")
 
 
 def _compile_detached(cc: str, src: Path, lib: Path) -> None:
@@ -312,8 +312,7 @@ def run_detached(target: str, args: list[str], cleanup: list[Path]) -> None:
     written by the caller with :func:`_claim`, and its inputs) when done, whatever
     happens; if it cannot start they are deleted here."""
     import sys
-    script = (_LOWEST_GROUP_PY +
-              "import sys, os, importlib\n"
+    script = ("import sys, os, importlib\n"
               "n = int(sys.argv[2])\n"
               "files, args = sys.argv[3:3 + n], sys.argv[3 + n:]\n"
               "mod, name = sys.argv[1].split(':')\n"
