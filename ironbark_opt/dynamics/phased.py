@@ -14,6 +14,20 @@ from ironbark_opt.errors import InputError, SolverError
 from ironbark_opt.roots import illinois
 
 
+def coast_to_descent(fly, t_b: float, t_end: float, what: str):
+    """``(X, v_z, k, t_end)``: the coast flown by ``fly(t_end) -> (X, v_z)`` from burnout
+    ``t_b`` to ``t_end`` [s], the horizon grown 1.5x (at most twice more) until a step
+    ends at ``v_z <= 0``; ``k`` is the first such step.  ``what`` names the apogee in the
+    error when none is reached."""
+    for _ in range(3):
+        X, vz = fly(t_end)
+        below = np.nonzero(vz <= 0)[0]
+        if below.size:
+            return X, vz, int(below[0]), t_end
+        t_end = t_b + 1.5 * (t_end - t_b)
+    raise SolverError(f"{what} not reached within the coast horizon")
+
+
 class PhasedMixin:
     """Phase-by-phase ascent of a :class:`~ironbark_opt.dynamics.model.FlightModel` (mixin)."""
 
@@ -98,18 +112,12 @@ class PhasedMixin:
                               "launch mass, the motor, launch.inclination_deg and the wind")
         # Drag only shortens the coast below the vacuum time v_z / g; the margin
         # covers gravity falling off with height.
-        t_end = t_b + vz_b / G0 + 2.0
-        for _ in range(3):
+        def fly(t_end):
             X_dm = self._run["coast"](x_b, t_b, t_end, p)
-            X_coast = np.array(X_dm)
-            vz = np.array(self._mapped("vz", X_coast.shape[1])(X_dm)).ravel()    # no NumPy round trip
-            below = np.nonzero(vz <= 0)[0]
-            if below.size:
-                break
-            t_end = t_b + 1.5 * (t_end - t_b)
-        else:
-            raise SolverError("apogee not reached within the coast horizon")
-        k = int(below[0])
+            X = np.array(X_dm)
+            return X, np.array(self._mapped("vz", X.shape[1])(X_dm)).ravel()    # no NumPy round trip
+
+        X_coast, vz, k, t_end = coast_to_descent(fly, t_b, t_b + vz_b / G0 + 2.0, "apogee")
         fr = self.coast_fractions_of(p)
         span = t_end - t_b
         dt_c = span * (fr[k + 1] - fr[k])

@@ -38,6 +38,7 @@ from ironbark_opt.dynamics import rhs as rhs_mod
 from ironbark_opt.dynamics.frames import rotation_matrix
 from ironbark_opt.dynamics.integrator import phase_trajectory, rk4_step
 from ironbark_opt.dynamics.model import G0, FlightModel, Steps
+from ironbark_opt.dynamics.phased import coast_to_descent
 from ironbark_opt.errors import InputError, SolverError
 
 
@@ -346,17 +347,12 @@ class StagedFlightModel:
         vz_b = float(st.vz_l(x_b))
         if vz_b <= 0:
             raise SolverError("the sustainer's vertical velocity at burnout is not positive")
-        t_end = t_b2 + vz_b / G0 + 2.0
-        for _ in range(3):
-            X_c = np.array(self._traj["coast"](x_b, t_b2, t_end, p))
-            vz = np.array(st.vz_l.map(X_c.shape[1])(X_c)).ravel()
-            below = np.nonzero(vz <= 0)[0]
-            if below.size:
-                break
-            t_end = t_b2 + 1.5 * (t_end - t_b2)
-        else:
-            raise SolverError("the sustainer's apogee is not reached within the coast horizon")
-        k = int(below[0])
+
+        def fly(t_end):
+            X = np.array(self._traj["coast"](x_b, t_b2, t_end, p))
+            return X, np.array(st.vz_l.map(X.shape[1])(X)).ravel()
+
+        X_c, vz, k, t_end = coast_to_descent(fly, t_b2, t_b2 + vz_b / G0 + 2.0, "the sustainer's apogee is")
         dt = (t_end - t_b2) / self.n_scoast
         x_k = x_b if k == 0 else X_c[:, k - 1]
         vz_k = vz_b if k == 0 else vz[k - 1]
