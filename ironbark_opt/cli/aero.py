@@ -120,9 +120,19 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
                       "with Jorgensen's potential-flow shape at Mach: " + "; ".join(
                           f"{m} ({', '.join(f'{a:g}' for a in al)} deg)"
                           for m, al in extrapolated.items()))
+    inclination = md.get("mach_local_inclination", [])
+    if inclination:
+        warnings.warn("linear supersonic theory has no solution at Mach " + ", ".join(f"{m:g}" for m in inclination)
+                      + " (a surface steeper than the Mach cone): those Mach numbers use the local-inclination "
+                        "method (tangent cone / tangent wedge, no fin-body carry-over; less accurate)")
+    sonic_le = md.get("mach_sonic_leading_edge", [])
+    if sonic_le:
+        warnings.warn("a fin leading edge is sonic at Mach " + ", ".join(f"{m:g}" for m in sonic_le)
+                      + ": linear theory's integrable edge load kept there (Jones & Cohen)")
     n_sup = md.get("panels_supersonic", 0)
     result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
               "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
+              "mach_local_inclination": inclination, "mach_sonic_leading_edge": sonic_le,
               "mach": mach_v, "peak_mach_estimate": peak,
               "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
               "mach_critical": md.get("mach_critical"),

@@ -92,3 +92,18 @@ def test_peak_mach_estimate_is_the_files_own_flight():
             warnings.simplefilter("always")
             assert estimated_peak_mach(str(ork)) is None
         assert any("peak Mach" in str(x.message) for x in w)
+
+
+@pytest.mark.skipif(not TOML.exists(), reason="example rocket not present")
+def test_aero_build_says_which_mach_numbers_use_local_inclination(tmp_path):
+    """Calisto's Haack nose at Mach 4 (coarse mesh) is steeper than the Mach cone even with the
+    sharpened tip: the build says so on stderr and in its JSON, not only in the table metadata."""
+    r = CliRunner().invoke(main, ["aero", "build", str(TOML), "--mach", "0.6,4.0", "--alpha-deg", "0,4",
+                                  "--refine", "0.5", "--workers", "1", "--out", str(tmp_path / "c"),
+                                  "--no-resume", "--json"])
+    assert r.exit_code == 0, r.output
+    out = json.loads(r.stdout)
+    assert out["mach_local_inclination"] == [4.0] and out["mach_sonic_leading_edge"] == []
+    meta = json.loads(Path(out["table_json"]).read_text())
+    assert meta["mach_local_inclination"] == [4.0]
+    assert "no solution at Mach 4 " in r.stderr and "local-inclination" in r.stderr
