@@ -82,6 +82,11 @@ tangent-cone (smooth step)."""
 FD_OFFSET = 2e-2
 FD_STEP = 2e-2
 """Finite-difference step for the normal mass flux, x sqrt(panel area) [-]."""
+SIDE_TOL = 1e-6
+"""Distance from a fin's mid-plane (and from the plane 90 deg from the fin)
+below which a receiver is on neither side, x the model's largest extent [-]:
+far above rounding (1e-16), far below a fin's half-thickness (1e-3 of the
+model's size and more)."""
 G1_MIN = 0.05
 """Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
 panel is (nearly) Mach-inclined and linear theory has no valid solution."""
@@ -197,6 +202,14 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     where the two faces of a thin fin would otherwise nearly coincide and
     make the system singular.  Tip-region communication around the fin tip
     goes through the tip cap.
+
+    Sides are decided with a tolerance, SIDE_TOL x the model's size, not by the
+    sign of rounding noise: a receiver within it of the fin's mid-plane (the tip
+    cap panels, whose centroids lie on it) is on neither side and receives from
+    both faces; a body panel within it of the plane through the axis
+    perpendicular to the fin (90 deg from it) is not in the fin's half.  The
+    assignment is then deterministic and a mirror-symmetric model's is its own
+    mirror image.
     """
     net = panels.network[keep]
     m = len(net)
@@ -208,6 +221,7 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     fins = np.unique(panels.network[panels.wake_upper[lifting]])
     is_fin = np.isin(net, fins)
     recv = np.zeros((len(fins), m))
+    tol = SIDE_TOL * float(np.ptp(cen, axis=0).max())
     for k, f in enumerate(fins):
         on = net == f
         c0 = cen[on].mean(axis=0)
@@ -215,8 +229,11 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
         face = nrm @ e_t
         side = np.where(on & (np.abs(face) > 0.5), np.sign(face), 0.0)
         radial = c0 * np.array([0.0, 1.0, 1.0])
-        near = (cen @ radial > 0) & ~is_fin & (cen[:, 0] >= cen[on, 0].min())
-        recv[k] = np.where(on, side, np.where(near, np.sign((cen - c0) @ e_t), 0.0))
+        radial /= max(float(np.linalg.norm(radial)), 1e-300)
+        near = (cen @ radial > tol) & ~is_fin & (cen[:, 0] >= cen[on, 0].min())
+        dist = (cen - c0) @ e_t
+        across = np.where(np.abs(dist) > tol, np.sign(dist), 0.0)
+        recv[k] = np.where(on, side, np.where(near, across, 0.0))
         src_fin[side != 0] = k
         src_side[side != 0] = side[side != 0]
     return recv, src_fin, src_side

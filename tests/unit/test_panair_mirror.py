@@ -83,3 +83,29 @@ def test_supersonic_meshes_keep_the_first_widest_gap_for_the_seam():
     off_bottom = {k: min(v, 360.0 - v) for k, v in seams.items()}
     assert off_bottom[True] == pytest.approx(0.0, abs=1e-9)
     assert off_bottom[False] == pytest.approx(120.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("mach", [1.2, 2.5])
+def test_supersonic_fin_sides_are_their_own_mirror_image(mach):
+    """The fin sides of the supersonic solver (which source acts on which receiver,
+    _fin_shadow) are decided with a tolerance, not by the sign of rounding noise: on a
+    mirror-symmetric model the shadow mask is invariant under the mirror permutation,
+    and every tip-cap panel (centroid on its fin's mid-plane) receives from both faces."""
+    from panair.solver.supersonic import _fin_shadow, _fin_sides, _tip_caps
+    panels = _panels(3, 0.0)
+    p = mirror_map(panels)
+    keep = panels.integrate.copy()
+    idx = -np.ones(panels.n, int)
+    idx[keep] = np.arange(keep.sum())
+    pk = idx[p[keep]]
+    assert np.all(pk >= 0)
+    _, cen, nrm, _ = panels.geometry(1.0 / np.sqrt(mach**2 - 1.0))
+    cen, nrm = cen[keep], nrm[keep]
+    shadow = _fin_shadow(panels, keep, cen, nrm)
+    assert shadow.any()
+    np.testing.assert_array_equal(shadow[np.ix_(pk, pk)], shadow)
+    recv, src_fin, _ = _fin_sides(panels, keep, cen, nrm)
+    fins = np.unique(panels.network[keep][src_fin >= 0])
+    caps = _tip_caps(panels, keep, fins)
+    assert caps.sum() >= 3
+    assert np.all(recv[:, caps] == 0.0)
