@@ -39,9 +39,7 @@ def make_solver(panels: PanelSet, mach: float, *, sref: float, lref: float, xref
     pressure_rule : str
     mirror : bool
         Subsonic: flows without sideslip only, a mirror-symmetric full model solved on
-        half its panels (see SubsonicSolver).  Ignored by the supersonic solver, solved
-        whole (its meshes keep the earlier seam, not in the x-z plane; its fin-side
-        assignment, :func:`panair.solver.supersonic._fin_sides`, is mirror-consistent).
+        half its panels (see SubsonicSolver, SupersonicSolver).
 
     Raises
     ------
@@ -56,7 +54,7 @@ def make_solver(panels: PanelSet, mach: float, *, sref: float, lref: float, xref
             "see panair.bridge)")
     if mach >= MACH_SUPERSONIC_MIN:
         return SupersonicSolver(panels, mach, sref=sref, lref=lref, xref=xref,
-                                pressure_rule=pressure_rule)
+                                pressure_rule=pressure_rule, mirror=mirror)
     return SubsonicSolver(panels, mach, sref=sref, lref=lref, xref=xref,
                           pressure_rule=pressure_rule, mirror=mirror)
 

@@ -66,7 +66,7 @@ import numpy as np
 
 from ironbark_opt.errors import InputError, SolverError
 
-from .panels import PanelSet
+from .panels import MirrorFold, PanelSet, mirror_map
 from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gradient
 from .subsonic import PanelResult, _free_stream
 from .nose_correction import TangentCone
@@ -335,11 +335,17 @@ class SupersonicSolver:
         B tan(nose half-angle) goes from 0.4 to 0.6
         (:mod:`.nose_correction`); ``"linear"``: linear theory everywhere
         (PANAIR's behaviour).
+    mirror : bool
+        Flows without sideslip only: when the full model is its own mirror image in
+        the x-z plane (:func:`panair.solver.panels.mirror_map`) the influence rows are
+        computed and the system factorised for one panel of each mirror pair
+        (:class:`panair.solver.panels.MirrorFold`; the fin sides are mirror-consistent,
+        :func:`_fin_sides`), the full system's solution to rounding.
     """
 
     def __init__(self, panels: PanelSet, mach: float, *, sref: float, lref: float,
                  xref: float = 0.0, pressure_rule: str = "second-order",
-                 nose: str = "tangent-cone"):
+                 nose: str = "tangent-cone", mirror: bool = False):
         if nose not in ("tangent-cone", "linear"):
             raise InputError(f"nose must be 'tangent-cone' or 'linear', got {nose!r}", field="nose")
         if not MACH_SUPERSONIC_MIN <= mach <= MACH_SUPERSONIC_MAX:
@@ -357,6 +363,8 @@ class SupersonicSolver:
         idx[keep] = np.arange(keep.sum())
         nb = panels.neighbours[keep]
         self._nb = np.where(nb >= 0, idx[np.maximum(nb, 0)], nb)
+        twins = mirror_map(panels) if mirror else None
+        self._fold = MirrorFold(idx[twins[keep]]) if twins is not None else None
         flat, cen, nrm, area = panels.geometry(1.0 / self.B)
         flat, cen, nrm = flat[keep], cen[keep], nrm[keep]
         _, _, g1 = panel_frames(flat, nrm)
@@ -382,16 +390,20 @@ class SupersonicSolver:
         # both potentials in one pass, the fin-separated pairs skipped; rows aft first,
         # the most likely to meet a Mach-cone singularity (the most panels upstream):
         # a non-finite coefficient makes the whole system unsolvable, found early
+        # (folded: the rows of one panel of each mirror pair, the twins' columns added)
+        rows = np.arange(len(cen)) if self._fold is None else self._fold.reps
         phi0, phi1, bad_row = source_potential_pair(
             p0, p1, flat, nrm, sides=_fin_sides(panels, keep, cen, nrm),
-            mirror=panels.symmetric, rows=np.argsort(-cen[:, 0], kind="stable"))
+            mirror=panels.symmetric, rows=rows[np.argsort(-cen[rows, 0], kind="stable")])
         if bad_row >= 0:
             raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
-        A = (phi1 - phi0) / eps[:, None]
+        if self._fold is not None:
+            phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
+        A = (phi1 - phi0) / eps[rows, None]
         del phi1
         self._phi0 = phi0
         try:
-            self._lu = CausalLU(A, cen[:, 0])
+            self._lu = CausalLU(A, cen[rows, 0])
             diag = self._lu.pivots()
         except SolverError:
             diag = np.zeros(1)
@@ -456,14 +468,17 @@ class SupersonicSolver:
         """
         alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
                                           np.atleast_1d(np.asarray(beta, float)))
-        if self.panels.symmetric and np.any(beta != 0.0):
-            raise InputError("a half model (symmetric=True) cannot be solved in sideslip; "
-                             "mesh the full configuration", field="beta")
+        if (self.panels.symmetric or self._fold is not None) and np.any(beta != 0.0):
+            raise InputError("a half model (symmetric=True) or a solver set up with mirror=True "
+                             "cannot be solved in sideslip; mesh the full configuration",
+                             field="beta")
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])
         vt = v / np.array([self.B, 1.0, 1.0])
         rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
-        sigma = self._lu.solve(rhs)
-        phi = self._phi0 @ sigma
+        if self._fold is None:
+            phi = self._phi0 @ self._lu.solve(rhs)
+        else:
+            phi = self._fold.expand(self._phi0 @ self._lu.solve(rhs[self._fold.reps]))
         nu = self._nrm_t * np.array([-1.0, 1.0, 1.0])
         out = []
         # fin tip caps are solved (the two sides of a fin communicate through them)
