@@ -261,13 +261,10 @@ class MeshOptions:
     :func:`_sharpened_tip`); mirror_seam : the seam of a full-circle mesh goes in
     the widest gap between fins nearest the x-z plane (else the first widest gap):
     a layout that is its own mirror image in that plane (3 fins rolled 0 deg) is
-    then meshed as one, which the subsonic solver solves on half its panels
-    (:func:`panair.solver.panels.mirror_map`).  :meth:`for_mach` clears it for
-    supersonic Mach numbers: the supersonic solver does not halve the system (see
-    :func:`panair.solver.make_solver`) and its solution near Mach 1.2 is sensitive
-    to the layout (measured, Bella Lui: with the seam moved linear theory failed at
-    Mach 1.2, alpha 0, and the whole Mach number went to local inclination), so
-    supersonic meshes keep their earlier layout.
+    then meshed as one, which both solvers solve on half its panels
+    (:func:`panair.solver.panels.mirror_map`).  Supersonic meshes too since the
+    fin sides are decided with a tolerance (:func:`panair.solver.supersonic._fin_sides`;
+    with the sign of rounding noise, Bella Lui's Mach 1.2 failed with this seam).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -299,9 +296,9 @@ class MeshOptions:
         if mach <= 1.0:
             return self
         if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0:
-            return replace(self, mirror_seam=False) if self.mirror_seam else self
+            return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
-                       supersonic_span_factor=1.0, mirror_seam=False,
+                       supersonic_span_factor=1.0,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE)
 
 

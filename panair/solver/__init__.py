@@ -39,11 +39,7 @@ def make_solver(panels: PanelSet, mach: float, *, sref: float, lref: float, xref
     pressure_rule : str
     mirror : bool
         Subsonic: flows without sideslip only, a mirror-symmetric full model solved on
-        half its panels (see SubsonicSolver).  Ignored by the supersonic solver, whose
-        full model is not exactly its own mirror image (a fin's tip cap panels lie on
-        the fin's mid-plane, so the side of the fin each receives from is decided by
-        rounding, :func:`panair.solver.supersonic._fin_sides`): halved, its solution
-        moved by up to 0.2 % (Bella Lui, Mach 1.5).
+        half its panels (see SubsonicSolver, SupersonicSolver).
 
     Raises
     ------
@@ -58,7 +54,7 @@ def make_solver(panels: PanelSet, mach: float, *, sref: float, lref: float, xref
             "see panair.bridge)")
     if mach >= MACH_SUPERSONIC_MIN:
         return SupersonicSolver(panels, mach, sref=sref, lref=lref, xref=xref,
-                                pressure_rule=pressure_rule)
+                                pressure_rule=pressure_rule, mirror=mirror)
     return SubsonicSolver(panels, mach, sref=sref, lref=lref, xref=xref,
                           pressure_rule=pressure_rule, mirror=mirror)
 

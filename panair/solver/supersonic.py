@@ -66,7 +66,7 @@ import numpy as np
 
 from ironbark_opt.errors import InputError, SolverError
 
-from .panels import PanelSet
+from .panels import MirrorFold, PanelSet, mirror_map
 from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gradient
 from .subsonic import PanelResult, _free_stream
 from .nose_correction import TangentCone
@@ -82,6 +82,11 @@ tangent-cone (smooth step)."""
 FD_OFFSET = 2e-2
 FD_STEP = 2e-2
 """Finite-difference step for the normal mass flux, x sqrt(panel area) [-]."""
+SIDE_TOL = 1e-6
+"""Distance from a fin's mid-plane (and from the plane 90 deg from the fin)
+below which a receiver is on neither side, x the model's largest extent [-]:
+far above rounding (1e-16), far below a fin's half-thickness (1e-3 of the
+model's size and more)."""
 G1_MIN = 0.05
 """Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
 panel is (nearly) Mach-inclined and linear theory has no valid solution."""
@@ -197,6 +202,14 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     where the two faces of a thin fin would otherwise nearly coincide and
     make the system singular.  Tip-region communication around the fin tip
     goes through the tip cap.
+
+    Sides are decided with a tolerance, SIDE_TOL x the model's size, not by the
+    sign of rounding noise: a receiver within it of the fin's mid-plane (the tip
+    cap panels, whose centroids lie on it) is on neither side and receives from
+    both faces; a body panel within it of the plane through the axis
+    perpendicular to the fin (90 deg from it) is not in the fin's half.  The
+    assignment is then deterministic and a mirror-symmetric model's is its own
+    mirror image.
     """
     net = panels.network[keep]
     m = len(net)
@@ -208,6 +221,7 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     fins = np.unique(panels.network[panels.wake_upper[lifting]])
     is_fin = np.isin(net, fins)
     recv = np.zeros((len(fins), m))
+    tol = SIDE_TOL * float(np.ptp(cen, axis=0).max())
     for k, f in enumerate(fins):
         on = net == f
         c0 = cen[on].mean(axis=0)
@@ -215,8 +229,11 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
         face = nrm @ e_t
         side = np.where(on & (np.abs(face) > 0.5), np.sign(face), 0.0)
         radial = c0 * np.array([0.0, 1.0, 1.0])
-        near = (cen @ radial > 0) & ~is_fin & (cen[:, 0] >= cen[on, 0].min())
-        recv[k] = np.where(on, side, np.where(near, np.sign((cen - c0) @ e_t), 0.0))
+        radial /= max(float(np.linalg.norm(radial)), 1e-300)
+        near = (cen @ radial > tol) & ~is_fin & (cen[:, 0] >= cen[on, 0].min())
+        dist = (cen - c0) @ e_t
+        across = np.where(np.abs(dist) > tol, np.sign(dist), 0.0)
+        recv[k] = np.where(on, side, np.where(near, across, 0.0))
         src_fin[side != 0] = k
         src_side[side != 0] = side[side != 0]
     return recv, src_fin, src_side
@@ -318,11 +335,17 @@ class SupersonicSolver:
         B tan(nose half-angle) goes from 0.4 to 0.6
         (:mod:`.nose_correction`); ``"linear"``: linear theory everywhere
         (PANAIR's behaviour).
+    mirror : bool
+        Flows without sideslip only: when the full model is its own mirror image in
+        the x-z plane (:func:`panair.solver.panels.mirror_map`) the influence rows are
+        computed and the system factorised for one panel of each mirror pair
+        (:class:`panair.solver.panels.MirrorFold`; the fin sides are mirror-consistent,
+        :func:`_fin_sides`), the full system's solution to rounding.
     """
 
     def __init__(self, panels: PanelSet, mach: float, *, sref: float, lref: float,
                  xref: float = 0.0, pressure_rule: str = "second-order",
-                 nose: str = "tangent-cone"):
+                 nose: str = "tangent-cone", mirror: bool = False):
         if nose not in ("tangent-cone", "linear"):
             raise InputError(f"nose must be 'tangent-cone' or 'linear', got {nose!r}", field="nose")
         if not MACH_SUPERSONIC_MIN <= mach <= MACH_SUPERSONIC_MAX:
@@ -340,6 +363,8 @@ class SupersonicSolver:
         idx[keep] = np.arange(keep.sum())
         nb = panels.neighbours[keep]
         self._nb = np.where(nb >= 0, idx[np.maximum(nb, 0)], nb)
+        twins = mirror_map(panels) if mirror else None
+        self._fold = MirrorFold(idx[twins[keep]]) if twins is not None else None
         flat, cen, nrm, area = panels.geometry(1.0 / self.B)
         flat, cen, nrm = flat[keep], cen[keep], nrm[keep]
         _, _, g1 = panel_frames(flat, nrm)
@@ -365,16 +390,20 @@ class SupersonicSolver:
         # both potentials in one pass, the fin-separated pairs skipped; rows aft first,
         # the most likely to meet a Mach-cone singularity (the most panels upstream):
         # a non-finite coefficient makes the whole system unsolvable, found early
+        # (folded: the rows of one panel of each mirror pair, the twins' columns added)
+        rows = np.arange(len(cen)) if self._fold is None else self._fold.reps
         phi0, phi1, bad_row = source_potential_pair(
             p0, p1, flat, nrm, sides=_fin_sides(panels, keep, cen, nrm),
-            mirror=panels.symmetric, rows=np.argsort(-cen[:, 0], kind="stable"))
+            mirror=panels.symmetric, rows=rows[np.argsort(-cen[rows, 0], kind="stable")])
         if bad_row >= 0:
             raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
-        A = (phi1 - phi0) / eps[:, None]
+        if self._fold is not None:
+            phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
+        A = (phi1 - phi0) / eps[rows, None]
         del phi1
         self._phi0 = phi0
         try:
-            self._lu = CausalLU(A, cen[:, 0])
+            self._lu = CausalLU(A, cen[rows, 0])
             diag = self._lu.pivots()
         except SolverError:
             diag = np.zeros(1)
@@ -439,14 +468,17 @@ class SupersonicSolver:
         """
         alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
                                           np.atleast_1d(np.asarray(beta, float)))
-        if self.panels.symmetric and np.any(beta != 0.0):
-            raise InputError("a half model (symmetric=True) cannot be solved in sideslip; "
-                             "mesh the full configuration", field="beta")
+        if (self.panels.symmetric or self._fold is not None) and np.any(beta != 0.0):
+            raise InputError("a half model (symmetric=True) or a solver set up with mirror=True "
+                             "cannot be solved in sideslip; mesh the full configuration",
+                             field="beta")
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])
         vt = v / np.array([self.B, 1.0, 1.0])
         rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
-        sigma = self._lu.solve(rhs)
-        phi = self._phi0 @ sigma
+        if self._fold is None:
+            phi = self._phi0 @ self._lu.solve(rhs)
+        else:
+            phi = self._fold.expand(self._phi0 @ self._lu.solve(rhs[self._fold.reps]))
         nu = self._nrm_t * np.array([-1.0, 1.0, 1.0])
         out = []
         # fin tip caps are solved (the two sides of a fin communicate through them)
