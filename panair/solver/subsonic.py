@@ -72,6 +72,14 @@ class PanelResult:
         return {k: getattr(self, k) for k in ("CA", "CY", "CN", "Cl", "Cm", "Cn")}
 
 
+def _refuse_sideslip(beta, mirrored: bool):
+    """InputError for a sideslip angle on a solver that assumes flow symmetric in the
+    x-z plane (a half model, or a full model folded on its mirror twins)."""
+    if mirrored and np.any(beta != 0.0):
+        raise InputError("a half model (symmetric=True) or a solver set up with mirror=True "
+                         "cannot be solved in sideslip; mesh the full configuration", field="beta")
+
+
 def _free_stream(alpha, beta):
     """Unit free-stream direction in body axes (x aft, z up), aeroballistic
     angles: alpha [rad] in the x-z plane, beta [rad] sideslip (wind from
@@ -234,10 +242,7 @@ class SubsonicSolver:
         """
         alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
                                           np.atleast_1d(np.asarray(beta, float)))
-        if (self.panels.symmetric or self._fold is not None) and np.any(beta != 0.0):
-            raise InputError("a half model (symmetric=True) or a solver set up with mirror=True "
-                             "cannot be solved in sideslip; mesh the full configuration",
-                             field="beta")
+        _refuse_sideslip(beta, self.panels.symmetric or self._fold is not None)
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])     # (k, 3)
         vt = v / np.array([self.beta_pg, 1.0, 1.0])                           # stretched free stream
         sigma = -(self._nrm_t @ vt.T)                                         # (n, k)

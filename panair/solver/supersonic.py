@@ -68,7 +68,7 @@ from ironbark_opt.errors import InputError, SolverError
 
 from .panels import MirrorFold, PanelSet, mirror_map
 from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gradient
-from .subsonic import PanelResult, _free_stream
+from .subsonic import PanelResult, _free_stream, _refuse_sideslip
 from .nose_correction import TangentCone
 from .supersonic_influence import panel_frames, source_potential_pair
 
@@ -224,8 +224,7 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     tol = SIDE_TOL * float(np.ptp(cen, axis=0).max())
     for k, f in enumerate(fins):
         on = net == f
-        c0 = cen[on].mean(axis=0)
-        e_t = np.linalg.svd(cen[on] - c0)[2][2]
+        c0, e_t = _fin_plane(cen[on])
         face = nrm @ e_t
         side = np.where(on & (np.abs(face) > 0.5), np.sign(face), 0.0)
         radial = c0 * np.array([0.0, 1.0, 1.0])
@@ -237,6 +236,13 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
         src_fin[side != 0] = k
         src_side[side != 0] = side[side != 0]
     return recv, src_fin, src_side
+
+
+def _fin_plane(fin_centroids):
+    """A fin's mid-plane: (point, unit normal) of the least-squares plane through its
+    panel centroids (the smallest singular direction)."""
+    c0 = fin_centroids.mean(axis=0)
+    return c0, np.linalg.svd(fin_centroids - c0)[2][2]
 
 
 def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
@@ -287,22 +293,20 @@ def _sonic_leading_edge(panels: PanelSet, keep, fins, mach) -> np.ndarray:
     out = np.zeros(len(net), bool)
     if not np.any(on):
         return out
-    _, _, nrm, _ = panels.geometry(1.0)
-    nrm = nrm[keep]
+    _, cen, nrm, _ = panels.geometry(1.0)
+    cen, nrm = cen[keep], nrm[keep]
     fwd = on & (nrm[:, 0] < -np.sin(np.radians(1.0)))
     idx = np.nonzero(fwd)[0]
     if not len(idx):
         return out
-    # the edge is the intersection of the face with the fin's mid-plane (least-squares
-    # plane through the fin's panel centroids, as _fin_sides): direction n x e_t
-    _, cen, _, _ = panels.geometry(1.0)
+    # the edge is the intersection of the face with the fin's mid-plane (_fin_plane,
+    # as _fin_sides): direction n x e_t
     le = np.zeros((len(idx), 3))
     for f in fins:
         of_f = net[idx] == f
         if not np.any(of_f):
             continue
-        c_f = cen[keep][net == f]
-        e_t = np.linalg.svd(c_f - c_f.mean(axis=0))[2][2]
+        e_t = _fin_plane(cen[net == f])[1]
         le[of_f] = np.cross(nrm[idx[of_f]], e_t)
     le /= np.maximum(np.linalg.norm(le, axis=1), 1e-300)[:, None]
     cos_sweep = np.sqrt(np.maximum(1.0 - le[:, 0] ** 2, 1e-12))
@@ -468,10 +472,7 @@ class SupersonicSolver:
         """
         alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
                                           np.atleast_1d(np.asarray(beta, float)))
-        if (self.panels.symmetric or self._fold is not None) and np.any(beta != 0.0):
-            raise InputError("a half model (symmetric=True) or a solver set up with mirror=True "
-                             "cannot be solved in sideslip; mesh the full configuration",
-                             field="beta")
+        _refuse_sideslip(beta, self.panels.symmetric or self._fold is not None)
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])
         vt = v / np.array([self.B, 1.0, 1.0])
         rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
