@@ -32,7 +32,7 @@ from __future__ import annotations
 import casadi as ca
 import numpy as np
 
-from ironbark_opt.dynamics.model import G0, _refuse_controller
+from ironbark_opt.dynamics.model import G0, _refuse_controller, max_boost_speed, rail_and_boost
 
 #: horizon growth of ``FlightModel._ascent_phased`` when apogee lies beyond the first horizon
 _HORIZON_GROWTH = (1.0, 1.5, 2.25)
@@ -68,10 +68,7 @@ def flown_apogee_function(model, p_nominal) -> ca.Function | None:
     h_nominal = t_a0 - (t_b0 + span0 * fr[k])
 
     p = ca.MX.sym("p", model.n_p)
-    t_r = model.rail_exit_root(float(run["t_rail"]), p)
-    x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
-    t_b = model.burn_time(p)
-    X_b = model.trajectory["boost"](x_r, t_r, t_b, p)
+    t_r, x_r, t_b, X_b = rail_and_boost(model, p, float(run["t_rail"]))
     x_b = X_b[:, -1]
     span = growth * (model.vz_l(x_b) / G0 + 2.0)
     x_k = x_b if k == 0 else model.trajectory["coast"](x_b, t_b, t_b + span, p)[:, k - 1]
@@ -82,6 +79,6 @@ def flown_apogee_function(model, p_nominal) -> ca.Function | None:
     root = ca.rootfinder("apogee_in_step", "newton", vz, {"abstol": 1e-10, "max_iter": 30, "error_on_fail": True})
     h_a = root(h_nominal, ca.vertcat(x_k, t_k, p))
     x_a = model.step["coast"](x_k, t_k, h_a, p)
-    v_max = ca.mmax(ca.sqrt(ca.sum1(X_b[3:6, :] ** 2)))
+    v_max = max_boost_speed(X_b)
     return ca.Function("flown_apogee", [p], [x_a[2], t_k + h_a, ca.norm_2(x_r[3:6]), v_max],
                        ["p"], ["apogee_agl", "t_apogee", "rail_exit_speed", "max_speed"])

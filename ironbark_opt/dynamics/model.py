@@ -241,16 +241,29 @@ def _refuse_controller(setup):
                          "mach or vertical_speed)", source=setup.source, field="airbrakes.trigger")
 
 
+def rail_and_boost(model: FlightModel, p, t_rail_guess: float, t_rail=None):
+    """Symbolic (MX) rail exit and boost of a single-stage flight: ``(t_rail, x_rail,
+    t_burnout, X_boost)``; the rail exit by rootfinder from ``t_rail_guess``, or
+    ``t_rail`` itself."""
+    t_r = model.rail_exit_root(t_rail_guess, p) if t_rail is None else t_rail
+    x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
+    t_b = model.burn_time(p)
+    return t_r, x_r, t_b, model.trajectory["boost"](x_r, t_r, t_b, p)
+
+
+def max_boost_speed(X_boost):
+    """The largest boost-phase speed sample [m/s] (the peak is at or just before
+    burnout; its derivative is that sample's)."""
+    return ca.mmax(ca.sqrt(ca.sum1(X_boost[3:6, :] ** 2)))
+
+
 def _final_state(model: FlightModel, p, T, t_rail_guess: float, t_rail=None):
     """Symbolic (MX) state at time ``T`` in the coast, through all phases; the
     rail exit by rootfinder from ``t_rail_guess``, or ``t_rail`` itself (an
     optimisation variable constrained by :meth:`FlightModel.rail_residual`)."""
     if hasattr(type(model), "final_state_symbolic"):    # staged rockets (dynamics/staged.py)
         return model.final_state_symbolic(p, T, t_rail_guess)
-    t_r = model.rail_exit_root(t_rail_guess, p) if t_rail is None else t_rail
-    x_r = model.trajectory["rail"](model.initial_state(p), 0, t_r, p)[:, -1]
-    t_b = model.burn_time(p)
-    X_b = model.trajectory["boost"](x_r, t_r, t_b, p)
+    t_r, x_r, t_b, X_b = rail_and_boost(model, p, t_rail_guess, t_rail)
     if ejection.ejection_time(model.setup, p) is not None and ejection.ejects_before_apogee(model):
         x_t = ejection.ejected_final_state(model, X_b[:, -1], t_b, p, T)
     else:
@@ -281,7 +294,7 @@ def apogee_functions(model: FlightModel, p_nominal) -> dict:
     p = ca.MX.sym("p", model.n_p)
     T = ca.MX.sym("T")
     x_t, t_r, x_r, X_b = _final_state(model, p, T, t_rail0)
-    v_max = ca.mmax(ca.sqrt(ca.sum1(X_b[3:6, :] ** 2)))
+    v_max = max_boost_speed(X_b)
     final = ca.Function("final_state", [p, T], [x_t, t_r, x_r, v_max], ["p", "T"],
                         ["x_T", "t_rail", "x_rail", "max_speed"])
     vz = ca.Function("vz_T", [T, p], [model.vz_l(x_t)])
