@@ -99,6 +99,10 @@ def merged_spline(name: str, grids: Sequence[np.ndarray],
     # equations and one step of iterative refinement
     u = (1 - np.cos((2 * np.arange(DEGREE + 1) + 1) * np.pi / (2 * DEGREE + 2))) / 2
     x = (edges[:-1, None] + np.diff(edges)[:, None] * u[None, :]).ravel()
+    target = np.vstack([np.array(f(np.clip(x, g[0], g[-1])[None, :])).reshape(-1, x.size)
+                        for g, f in zip(grids, curves)]).T                      # (N, m)
+    if current_form() == "pp":
+        return _piecewise_cubic(name, edges, u, target), float(lo), float(hi)
     first, vals = _basis_rows(knots, x)                                         # (N,), (N, 4)
     n = knots.size - DEGREE - 1
     cols = first[:, None] + np.arange(DEGREE + 1)[None, :]
@@ -106,8 +110,6 @@ def merged_spline(name: str, grids: Sequence[np.ndarray],
     for r in range(DEGREE + 1):
         for c in range(r + 1):
             np.add.at(band, (cols[:, r], c - r + DEGREE), vals[:, r] * vals[:, c])
-    target = np.vstack([np.array(f(np.clip(x, g[0], g[-1])[None, :])).reshape(-1, x.size)
-                        for g, f in zip(grids, curves)]).T                      # (N, m)
 
     def apply(c):
         return np.einsum("nk,nkm->nm", vals, c[cols])
@@ -119,24 +121,21 @@ def merged_spline(name: str, grids: Sequence[np.ndarray],
     factor = _band_ldl(band)
     coef = _band_solve(factor, normal(target))
     coef = coef + _band_solve(factor, normal(target - apply(coef)))
-    if current_form() == "pp":
-        return _piecewise_cubic(name, edges, grids, curves), float(lo), float(hi)
     # never inlined: an SX graph calls it as one node (its B-spline is an MX node)
     fn = ca.Function.bspline(name, [knots.tolist()], coef.ravel().tolist(), [DEGREE], coef.shape[1],
                              {"lookup_mode": ["binary"], "never_inline": True})
     return fn, float(lo), float(hi)
 
 
-def _piecewise_cubic(name: str, edges: np.ndarray, grids, curves) -> ca.Function:
+def _piecewise_cubic(name: str, edges: np.ndarray, s: np.ndarray, target: np.ndarray) -> ca.Function:
     """``mach -> (outputs of every curve)`` as one cubic per interval of ``edges`` (every
-    curve is one cubic there): coefficients fitted at 4 Chebyshev nodes per interval (a
-    4 x 4 Vandermonde solve in s = (x - a) / h, exact to rounding), evaluated by an
-    interval search (binary) and Horner's rule in u = x - a, all outputs at once."""
+    curve is one cubic there): coefficients fitted to the curves' values ``target``
+    ((4 n, m), at the 4 Chebyshev nodes ``s`` of each interval, as :func:`merged_spline`
+    samples them; a 4 x 4 Vandermonde solve in s = (x - a) / h, exact to rounding),
+    evaluated by an interval search (binary) and Horner's rule in u = x - a, all outputs
+    at once."""
     h = np.diff(edges)
-    s = (1 - np.cos((2 * np.arange(DEGREE + 1) + 1) * np.pi / (2 * DEGREE + 2))) / 2
-    x = (edges[:-1, None] + h[:, None] * s[None, :]).ravel()
-    values = np.vstack([np.array(f(np.clip(x, g[0], g[-1])[None, :])).reshape(-1, x.size)
-                        for g, f in zip(grids, curves)])                     # (m, 4 n)
+    values = target.T                                                        # (m, 4 n)
     m, n = values.shape[0], edges.size - 1
     vander = np.vander(s, DEGREE + 1, increasing=True)
     local = np.linalg.solve(vander, values.reshape(m, n, DEGREE + 1).transpose(2, 1, 0).reshape(DEGREE + 1, -1))
