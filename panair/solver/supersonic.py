@@ -111,6 +111,11 @@ CAP_CP_MAX = 1e4
 singularities reach ~1e3 (measured: Basic Finner 579, Kestrel 848 at Mach 1.5,
 alpha 12 deg); a Mach-cone coincidence on a cap gives ~1e8 and moves the
 integrated solution too (pitched Basic Finner, Mach 2.375: lift +11 %)."""
+CLOSURE_PHI_RATIO = 10.0
+"""Largest |potential| on the closure slivers of a pointed fin tip
+(:func:`_pointed_tip_closure`) as a multiple of the largest elsewhere: a
+Mach-cone coincidence makes it singular, a regular solution keeps it within
+the fin's own range."""
 BAD_FORCE_FRACTION = 0.01
 """The out-of-range panels may carry at most max(BAD_FORCE_MAX,
 BAD_FORCE_FRACTION x the largest force coefficient of the in-range panels).
@@ -261,6 +266,38 @@ def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
         on = net == k
         if k not in fins and inside[on].all():
             out |= on
+    return out
+
+
+def _pointed_tip_closure(panels: PanelSet, keep, fins) -> np.ndarray:
+    """Panels closing a pointed fin tip (tip chord 0) sideways: fin panels with a
+    collapsed edge (the last spanwise line of the fin mesh is one point,
+    :func:`panair.mesh._fin_networks`) whose normal lies within 60 deg of the fin's
+    mid-plane (|n . n_fin| < 0.5), i.e. the triangles by which the rounded or
+    bevelled edges wrap onto the tip point.  They have the role of a tip cap on a
+    fin with a tip chord (:func:`_tip_caps`) and are treated as one: solved, not
+    integrated, checked against CAP_CP_MAX.  The fin's side triangles of the last
+    strip stay in the forces.  (Measured: ICL APEX's swept pointed fins, the
+    surface gradient on these slivers gave Cp down to -4e6 on 0.01 % of the area
+    at Mach 1.2-2 and sent each Mach number to local inclination; their
+    neighbours across the strip face > 60 deg away and are not in the gradient
+    stencil, :func:`panair.solver.pressure.surface_gradient`.)"""
+    net = panels.network[keep]
+    out = np.zeros(len(net), bool)
+    if not len(fins):
+        return out
+    c = panels.corners[keep]
+    size = float(np.ptp(panels.corners.reshape(-1, 3), axis=0).max())
+    edge = np.linalg.norm(np.roll(c, -1, axis=1) - c, axis=-1)       # (n, 4)
+    collapsed = (edge < 1e-9 * size).any(axis=1)
+    _, cen, nrm, _ = panels.geometry(1.0)
+    cen, nrm = cen[keep], nrm[keep]
+    for f in fins:
+        on = net == f
+        tip = on & collapsed
+        if tip.any():
+            n_fin = _fin_plane(cen[on])[1]
+            out |= tip & (np.abs(nrm @ n_fin) < 0.5)
     return out
 
 
@@ -419,8 +456,9 @@ class SupersonicSolver:
         self._nrm_f = panels.force_normals(n_phys)[keep]   # normals for the force integration
         lifting = ~panels.wake_at_base
         fins = np.unique(panels.network[panels.wake_upper[lifting]]) if np.any(lifting) else []
-        caps = _tip_caps(panels, keep, fins)
-        self._caps = caps
+        closure = _pointed_tip_closure(panels, keep, fins)
+        caps = _tip_caps(panels, keep, fins) | closure
+        self._caps, self._closure = caps, closure
         # leading-edge panels where linear theory's pressure is singular (sonic edge):
         # integrable, their load is the theory's leading-edge load (accepted up to
         # CAP_CP_MAX, see solve)
@@ -498,7 +536,17 @@ class SupersonicSolver:
                 inc = np.arcsin(np.clip(-(self._nrm[self._nose] @ v[k]), -1.0, 1.0))
                 w = self.nose_weight
                 cp[self._nose] = (1 - w) * cp[self._nose] + w * self._tangent_cone.cp(inc)
-            cap_cp = cp[self._caps]
+            cap_cp = cp[self._caps & ~self._closure]
+            # a pointed tip's closure slivers have a degenerate gradient stencil (their
+            # Cp is not informative): a Mach-cone coincidence there shows in the potential
+            phi_k = phi[:, k]
+            closure_phi = np.abs(phi_k[self._closure])
+            if closure_phi.size and not closure_phi.max() <= CLOSURE_PHI_RATIO * np.abs(
+                    phi_k[~self._closure]).max():
+                raise SolverError(
+                    f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: singular potential "
+                    "on a pointed fin tip (a Mach-cone coincidence); change the Mach number "
+                    "slightly or the mesh")
             if np.any(~np.isfinite(cap_cp) | (np.abs(cap_cp) > CAP_CP_MAX)):
                 raise SolverError(
                     f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: singular pressure on "

@@ -67,7 +67,9 @@ def test_solver_forces_identical(finner, mach, monkeypatch):
     res_n = make_solver(finner, mach, sref=np.pi / 4, lref=1.0, xref=5.0).solve(alphas)
     for rc, rn in zip(res_c, res_n):
         for k in ("CA", "CN", "Cm"):
-            assert getattr(rc, k) == pytest.approx(getattr(rn, k), rel=RTOL, abs=1e-14)
+            # abs: CN and Cm at alpha 0 are zero by symmetry, rounding noise (measured up
+            # to 3e-14 apart with numpy 2.4.6 / numba 0.68.1) on forces of order 1
+            assert getattr(rc, k) == pytest.approx(getattr(rn, k), rel=RTOL, abs=1e-12)
     assert res_c[-1].CN > 0.1                                  # a lifting solution was compared
 
 

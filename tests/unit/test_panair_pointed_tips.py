@@ -1,0 +1,86 @@
+"""Pointed fin tips (tip chord 0) in the supersonic solver: the slivers by which a
+rounded edge wraps onto the tip point are the tip's closure, treated as a tip cap
+(solved, not integrated; :func:`panair.solver.supersonic._pointed_tip_closure`).
+
+Checked: which panels are closure (only collapsed, sideways-facing fin panels,
+a sliver of the fin's area; none on a trapezoidal pointed fin meshed with equal
+strips, none on a fin with a tip chord), and (slow) that ICL APEX's fins, whose closure slivers
+had a singular surface gradient (Cp -4e6) and sent Mach 1.5 and 2 to local
+inclination, solve by linear theory at Mach 2 with a mesh-converged CN-alpha
+(refine 1.0 vs 1.3 within 1 %) close to the local-inclination estimate."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
+from panair.solver import build_panels, make_solver, supersonic
+
+APEX = Path(__file__).parents[1] / "data" / "telemetry" / "icl-apex1-pnut.ork"
+
+
+def _swept_rocket(tip_chord, freeform=True):
+    """A 1-m rocket with a conical nose and three swept fins (APEX-like planform; as
+    a free-form outline, meshed with strips narrowing toward the tip as APEX's)."""
+    x = np.linspace(0.0, 0.18, 12)
+    body = BodyGeometry(np.append(x, 0.99), np.append(0.023 * x / 0.18, 0.023))
+    outline = ([0.0, 1.0], [0.0, 0.0744], [0.079, tip_chord]) if freeform else None
+    fins = (FinGeometry(3, 0.079, tip_chord, 0.047, 0.0744, 0.891, 0.0025, section="rounded",
+                        roll=np.pi / 2, outline=outline),)
+    opt = MeshOptions(n_theta=24, n_nose=10, body_spacing=0.8, n_chord=12, n_span=6)
+    return build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=False,
+                                    options=opt.for_mach(1.2)), symmetric=False)
+
+
+def _closure(panels):
+    keep = panels.integrate
+    lifting = ~panels.wake_at_base
+    fins = np.unique(panels.network[panels.wake_upper[lifting]])
+    return supersonic._pointed_tip_closure(panels, keep, fins), keep, fins
+
+
+def test_closure_panels_are_the_pointed_tips_sideways_slivers():
+    pointed = _swept_rocket(0.0)
+    closure, keep, fins = _closure(pointed)
+    assert closure.sum() > 0
+    _, cen, nrm, area = pointed.geometry(1.0)
+    net = pointed.network[keep]
+    assert np.isin(net[closure], fins).all()
+    for f in fins:                                   # near each fin's tip point, a sliver
+        on = net == f
+        tip_y = np.abs(pointed.corners[keep][on][..., 1:]).max()
+        assert np.all(np.linalg.norm(cen[keep][closure & on][:, 1:], axis=1) > 0.9 * tip_y)
+        assert area[keep][closure & on].sum() < 0.01 * area[keep][on].sum()
+    clipped, _, _ = _closure(_swept_rocket(0.008))
+    assert not clipped.any()                        # a tip chord: a tip cap, no closure
+    equal_strips, _, _ = _closure(_swept_rocket(0.0, freeform=False))
+    assert not equal_strips.any()                   # its last strip's triangles face the sides
+
+
+@pytest.mark.slow
+def test_apex_pointed_fins_solve_linear_at_mach_2():
+    from dataclasses import replace
+
+    from ironbark_opt.vehicle import load_rocket_geometry
+    from panair.geometry_adapter import from_rocket, is_symmetric
+    from panair.solver.local_inclination import LocalInclinationSolver
+    rk, _ = load_rocket_geometry(APEX)
+    geom = from_rocket(rk)
+    sym = is_symmetric(geom)
+    sref, lref = rk.reference_area(), 2 * rk.reference_radius()
+    res = {}
+    for refine in (1.0, 1.3):
+        opt = replace(MeshOptions(refine=refine).for_mach(1.2), tip_mach=(2.0,))
+        panels = build_panels(mesh_rocket(geom, symmetric=sym, options=opt), symmetric=sym)
+        a0, a4 = make_solver(panels, 2.0, sref=sref, lref=lref, mirror=True).solve(
+            np.radians([0.0, 4.0]))
+        res[refine] = ((a4.CN - a0.CN) / np.radians(4.0), -(a4.Cm - a0.Cm) / (a4.CN - a0.CN))
+        if refine == 1.0:
+            l0, l4 = LocalInclinationSolver(panels, 2.0, sref=sref, lref=lref).solve(
+                np.radians([0.0, 4.0]))
+            li = (l4.CN - l0.CN) / np.radians(4.0)
+    (c1, x1), (c2, x2) = res[1.0], res[1.3]
+    print(f"\nAPEX Mach 2: CN-alpha {c1:.3f} (refine 1.3: {c2:.3f}; local inclination {li:.3f}), "
+          f"xcp {x1:.3f} / {x2:.3f} cal")
+    assert abs(c1 / c2 - 1) < 0.01 and abs(x1 - x2) < 0.05
+    assert abs(c1 / li - 1) < 0.1
