@@ -14,7 +14,7 @@ evaluated at the same two angles.  Goal (issue 13): CA0 within 10 %, CN-alpha wi
 Measured (session 9): the goals are not met, chiefly CN-alpha of the short-root
 fins 1 and 5 at Mach 0.6-0.9 (+21 ... +39 %) and the CP at Mach 1.2-2 (0.2-0.9 cal
 forward on every fin set).  What was ruled out, with numbers (session 9 report):
-the panel mesh (fin 1, refine 1.5: CN-alpha +0.2 %), the solver (its potential
+the panel mesh (twice finer: CN-alpha fin 1 +0.6 %, fin 5 -1.4 %), the solver (its potential
 CN-alpha is within -9 ... +5 % of the independent slender-body interference
 estimate below, on all five fins), the single-point secant of fins 1 and 9 (on the
 fins that have alpha0 it changes CN-alpha by -1 ... -5 % subsonic), and the body's
