@@ -1,18 +1,35 @@
 """Allen's parametric fin-body wind-tunnel data (NASA/TM-2001-210652, via MAPLEAF;
-tests/data/aero/allen/finNN: geometry.md and derived.csv, copied from
+tests/data/aero/allen/finNN: geometry.md, data.csv and derived.csv, copied from
 ../shared/reference/aero) against the table ``panair.rocket_table`` builds from the
 geometry alone.
 
 Compared per Mach number: forebody CA0 (pressure + skin friction at the tunnel's unit
 Reynolds number, no base: the balance measured the forebody), CN-alpha [1/rad] and
-the centre of pressure [calibers from the nose tip] from the 3.5 deg secant, as
-derived.csv was made.  Goal (issue 13): CA0 within 10 %, CN-alpha within 10 %, CP
-within 0.3 caliber at every Mach number, all five fin sets.
+the centre of pressure [calibers from the nose tip] as the secant between the
+measured angles of data.csv (alpha0 ~0 and alpha1 ~2.7-4.1 deg; fins 1 and 9 have no
+alpha0 point, so alpha0 = 0 with CN = Cm = 0, as derived.csv assumes), our table
+evaluated at the same two angles.  Goal (issue 13): CA0 within 10 %, CN-alpha within
+10 %, CP within 0.3 caliber at every Mach number, all five fin sets.
 
-Measured (session 4, fins 1 and 5): CA0 -17 ... +29 %, CN-alpha +21 ... +39 % at Mach
-0.6-0.9 and -2 ... +14 % at 1.2-2.96 where linear theory solves, CP within 0.9 cal;
-the goals are not met.  Mach numbers solved by the local-inclination fallback are
-printed, not bounded (no interference, and lift on the whole cylinder).
+Measured (session 9): the goals are not met, chiefly CN-alpha of the short-root
+fins 1 and 5 at Mach 0.6-0.9 (+21 ... +39 %) and the CP at Mach 1.2-2 (0.2-0.9 cal
+forward on every fin set).  What was ruled out, with numbers (session 9 report):
+the panel mesh (twice finer: CN-alpha fin 1 +0.6 %, fin 5 -1.4 %), the solver (its potential
+CN-alpha is within -9 ... +5 % of the independent slender-body interference
+estimate below, on all five fins), the single-point secant of fins 1 and 9 (on the
+fins that have alpha0 it changes CN-alpha by -1 ... -5 % subsonic), and the body's
+turbulent boundary layer at the fin root (a 1/7-power-profile strip estimate takes
+12 % off fin 1's fin lift but also 9 % off fin 10's, which has the same span and is
+matched to +3 %; no published model adopted).  Mach numbers solved by the
+local-inclination fallback are printed, not bounded (no interference, and lift on
+the whole cylinder).
+
+Independent method (subsonic, potential part only): nose 2/rad (slender-body theory)
+plus the fin pair, 2 x the isolated fin's slope (Diederich, as
+:func:`ironbark_opt.aero.barrowman.single_fin_cn_alpha`) x (K_W(B) + K_B(W)) =
+(1 + r/s_m)^2, the slender-body fin-body factors of Pitts, Nielsen & Kaattari (NACA
+Report 1307, 1957): Barrowman's method with the body carry-over lift K_B(W) it
+leaves out.
 
 Assumptions (not in the source): the fins are flat plates of the listed thickness
 with rounded edges (as the flight conversions assume where a section is not
@@ -90,6 +107,33 @@ def _measured(fin):
     return [dict(zip(head, r.split(","))) for r in rows[1:]]
 
 
+def _angles(fin):
+    """{mach: (alpha0, alpha1)} [rad] of data.csv's points (alpha0 = 0 where there is
+    no alpha ~0 point, as derived.csv assumes)."""
+    rows = [ln.split(",") for ln in (DATA / fin / "data.csv").read_text().splitlines()
+            if ln and ln[0].isdigit()]
+    by_mach = {}
+    for r in rows:
+        by_mach.setdefault(float(r[0]), []).append(float(r[1]))
+    return {m: (math.radians(min(a)) if len(a) > 1 else 0.0, math.radians(max(a)))
+            for m, a in by_mach.items()}
+
+
+def _slender_body_cn_alpha(fin, mach):
+    """Independent CN-alpha [1/rad] of the configuration's potential flow at subsonic
+    ``mach``: nose 2 + fin pair 2 (CN-alpha)_fin (1 + tau)^2, tau = r/s_m (Pitts,
+    Nielsen & Kaattari, NACA Rep. 1307: K_W(B) + K_B(W) = (1 + tau)^2)."""
+    from ironbark_opt.aero import barrowman
+    g = (DATA / fin / "geometry.md").read_text()
+    span = _row(g, "span per fin s")
+    sweep = float(re.search(r"tip leading edge lies ([0-9.]+) m", g).group(1))
+    plan = barrowman.trapezoid_planform(_row(g, "root chord cr"), _row(g, "tip chord ct"),
+                                        span, sweep)
+    c1 = float(barrowman.single_fin_cn_alpha(plan, mach, math.pi * D * D / 4))
+    tau = (D / 2) / (D / 2 + span)
+    return 2.0 + 2.0 * c1 * (1.0 + tau) ** 2
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("fin", FINS)
 def test_allen_fin_body(fin, tmp_path):
@@ -101,21 +145,26 @@ def test_allen_fin_body(fin, tmp_path):
     path.write_text(_toml(fin))
     rk, spec = load_rocket_geometry(path)
     meas = [r for r in _measured(fin) if float(r["mach"]) <= 4.0]
+    angles = _angles(fin)
     mach = np.array([float(r["mach"]) for r in meas])
-    alpha = np.radians([0.0, 2.0, 3.5, 5.0])
+    alpha = np.radians([0.0, 1.0, 2.0, 3.0, 4.0, 5.0])
     t = rocket_table(rk, spec, mach=np.concatenate([[0.05, 0.3], mach]), alpha_deg=np.degrees(alpha))
     fr = FrictionDrag(friction_components(rk, spec.surface_roughness), rk.reference_area(),
                       spec.re_transition)
+
+    def cn_cm(m, a):            # CN and Cm about the moment reference at (Mach, alpha)
+        cn = float(t.evaluate("CN", m, a))
+        return cn, float(t.evaluate("Cm", m, a)) + cn * X_MRC / D
+
     ok, worst = [], []
     print(f"\n{fin}: Mach  CA0 meas/ours  err%   CNa meas/ours  err%   xcp meas/ours  d(cal)")
     for r, m in zip(meas, mach):
         re_m = RE_PER_M.get(m, RE_PER_M_SUPERSONIC)
         ca0 = float(t.evaluate("CA_pressure", m, 0.0)) + float(fr.CA(m, re_m))
-        a1 = math.radians(3.5)
-        cn = float(t.evaluate("CN", m, a1))
-        cm = float(t.evaluate("Cm", m, a1)) + cn * X_MRC / D       # Cm about the nose tip -> MRC
-        cna = cn / a1
-        xcp = X_MRC / D - cm / cn
+        a0, a1 = angles[m]
+        (n0, c0), (n1, c1) = cn_cm(m, a0), cn_cm(m, a1)
+        cna = (n1 - n0) / (a1 - a0)
+        xcp = X_MRC / D - (c1 - c0) / (n1 - n0)
         e_ca = ca0 / float(r["CA0"]) - 1
         e_cn = cna / float(r["CNa_per_rad"]) - 1
         d_x = xcp - float(r["xcp_cal"])
@@ -129,6 +178,15 @@ def test_allen_fin_body(fin, tmp_path):
     print(f"{fin}: {sum(ok)} of {len(ok)} Mach numbers meet all three goals")
     print(f"{fin}: local-inclination Mach numbers (not bounded): {t.metadata['mach_local_inclination']}")
     w = np.max(np.array(worst), axis=0)
-    # regression bounds at the Mach numbers linear theory solved: the measured state of
-    # session 4 (CN-alpha 20-40 % high subsonic; the goals are printed per Mach number)
+    # regression bounds at the Mach numbers linear theory solved: the measured state
+    # (CN-alpha 20-40 % high subsonic on fins 1 and 5; the goals are printed per Mach number)
     assert w[0] < 0.35 and w[1] < 0.5 and w[2] < 1.2
+    # the solver against the independent slender-body interference estimate (potential
+    # part, small angle; measured -9 ... +5 % on the five fin sets at Mach 0.6 and 0.9)
+    for m in (0.6, 0.9):
+        a = math.radians(1.0)
+        ours = float(t.evaluate("CN_pressure", m, a)) / a
+        ref = _slender_body_cn_alpha(fin, m)
+        print(f"{fin}: Mach {m}: potential CN-alpha {ours:6.2f}, slender-body interference "
+              f"{ref:6.2f} ({100 * (ours / ref - 1):+5.1f} %)")
+        assert abs(ours / ref - 1) < 0.12
