@@ -26,9 +26,23 @@ component build-up (Niskanen 2013, sec. 3.1: every component instance is
 computed alone and summed) and DATCOM's body-alone plus fin-alone build-up
 (Finck, USAF Stability and Control DATCOM, 1978, sec. 4).  The build says so
 in its output.  Meshing the boosters as separate closed bodies in the core's
-panel model would include it, but the mesher (:mod:`panair.mesh`) models one
-body of revolution with its fins (one axis for the panels, the wake and the
-supersonic solver's fin-side logic), so that is not done.
+panel model would include it; measured on OpenRocket's example (the core's
+half model plus one booster's full mesh moved to its place, its mirror image
+the other; tangent to the core as in the file):
+
+* Mach 0.3: stack CN-alpha 1.48 x the build-up's (refine 0.5 and 1: 1.476,
+  1.481), CP 15 mm aft (0.980 vs 0.965 m), CA within 0.5 %: the pair of bodies
+  side by side carries much more lift than each alone (slender-body theory:
+  the lift follows the growth of the cross-section's apparent mass, which the
+  boosters widen);
+* but the number is set by the contact line: with the boosters moved out by
+  2 % of their radial distance (0.9 mm) the ratio is 1.30, by 10 % 1.17;
+* Mach 1.5 and 2: the joined model has no linear solution (non-physical
+  pressures near the contact line, Cp -125 ... 148 at Mach 2).
+
+So the joined model is not robust enough to build tables with, and the
+build-up is kept: its stack normal-force slope is on the low side (for
+boosters aft of the CG, as usual, so is the static margin).
 
 A booster's fins are generally not roll-symmetric (OpenRocket's example: two
 fins, 90 deg apart, on the outboard side).  The table is in total-angle-of-
