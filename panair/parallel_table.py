@@ -90,7 +90,9 @@ BOOSTER_REFINE = 0.5
 
 #: what the build output and the stack table say about interference
 INTERFERENCE_NOTE = ("booster-core aerodynamic interference is not modelled: the stack's table is the core's "
-                     "plus each booster's solved alone (component build-up, as OpenRocket and DATCOM)")
+                     "plus each booster's solved alone (component build-up, as OpenRocket and DATCOM); boosters "
+                     "beside the core add normal force this leaves out (OpenRocket's example: a third of the "
+                     "stack's CN-alpha at Mach 0.3, see panair/parallel_table.py)")
 
 
 def roll_offsets(geom) -> list[float]:
