@@ -157,14 +157,14 @@ def method_warnings(md: dict) -> tuple:
     return extrapolated, inclination, sonic_le
 
 
-def estimated_peak_mach(rocket) -> float | None:
+def estimated_peak_mach(rocket, config: str | None = None) -> float | None:
     """The rocket's peak Mach number [-] from one flight of the file as it is (its own
     aerodynamics: drag curves, a table, or the empirical model; its motor and launch),
     which sets how far the default Mach grid reaches (issue 13: 1.3 x the peak); None
     (and a warning) when the file cannot be flown (e.g. no motor resolvable)."""
     from ironbark_opt import load_setup, simulate
     try:
-        return float(simulate(load_setup(rocket)).summary_values["max_mach"])
+        return float(simulate(load_setup(rocket, config=config)).summary_values["max_mach"])
     except Exception as err:        # best effort: the build itself does not need a flight
         warnings.warn(f"no flight to estimate the peak Mach number ({err}); the default Mach "
                       "grid ends at 2")

@@ -28,16 +28,29 @@ def ork_with_boosters(path):
     return doc if doc.rocket.pods else None
 
 
+def peak_mach(doc, rocket) -> float | None:
+    """The largest peak Mach number [-] over the file's motor configurations (the
+    grid's reach: the file's selected configuration may fly without the boosters'
+    motors, slower than with them); None, warned, when none can be flown."""
+    from ironbark_opt.cli.aero import estimated_peak_mach
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        peaks = [p for p in (estimated_peak_mach(rocket, c.config_id) for c in doc.configs) if p is not None]
+    if not peaks:
+        return estimated_peak_mach(rocket)           # its warning says why
+    return max(peaks)
+
+
 def build_parallel(doc, rocket, mach, alpha_deg, out, *, workers: int, refine: float, use_panair: bool,
                    progress: bool, resume: bool, as_json: bool):
     """Build, save and report the three tables (see the module docstring)."""
-    from ironbark_opt.cli.aero import estimated_peak_mach, method_warnings
+    from ironbark_opt.cli.aero import method_warnings
     from ironbark_opt.openrocket.parallel import single_booster_set
     from panair.parallel_table import INTERFERENCE_NOTE, parallel_tables
     from panair.rocket_table import default_mach_grid
 
     single_booster_set(doc)                           # refused before the flight and the solves
-    peak = estimated_peak_mach(rocket) if mach is None else None
+    peak = peak_mach(doc, rocket) if mach is None else None
     if mach is None:
         mach = default_mach_grid(peak)
     if out is None:

@@ -171,3 +171,16 @@ def test_roll_offsets():
     one = [FinGeometry(1, 0.07, 0.05, 0.05, 0.025, 0.12, 0.003, roll=r) for r in (np.pi / 4, 3 * np.pi / 4)]
     a, b = roll_offsets(RocketGeometry(body, tuple(one)))
     assert b - a == pytest.approx(np.pi / 2)
+
+
+@pytest.mark.filterwarnings("ignore::UserWarning")
+def test_default_grid_reaches_the_fastest_configuration():
+    """The grid's reach comes from the fastest configuration (boosters lit, Mach 0.64),
+    not the file's selected one (boosters unlit, Mach 0.56)."""
+    from ironbark_opt.cli.aero import estimated_peak_mach
+    from ironbark_opt.cli.aero_parallel import peak_mach
+    doc = read_ork(ORK)
+    lit, selected = estimated_peak_mach(ORK, "6e25"), estimated_peak_mach(ORK)
+    print(f"peak Mach: boosters lit {lit:.3f}, selected configuration {selected:.3f}")
+    assert lit > selected
+    assert peak_mach(doc, ORK) == pytest.approx(lit, rel=1e-9)
