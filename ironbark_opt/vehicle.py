@@ -266,6 +266,10 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     if Path(path).suffix.lower() == ".ork":
         from ironbark_opt.openrocket import read_ork
         doc = read_ork(_existing(path))
+        if doc.rocket.pods and table is not None:     # the stack's table names the core's and booster's
+            from ironbark_opt.openrocket.parallel import flight_tables, parallel_setup
+            return parallel_setup(doc, config, tables=flight_tables(table, doc), **kwargs)
+
         if len(doc.rocket.stages) > 1 or doc.rocket.pods:
             from ironbark_opt.openrocket.parallel import parallel_setup
             from ironbark_opt.openrocket.staging import staged_setup

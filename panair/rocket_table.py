@@ -43,7 +43,8 @@ def default_mach_grid(peak_mach: float | None = None) -> np.ndarray:
 
 def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float = 1.0,
                  workers: int = 2, progress: bool = False, use_panair: bool = False,
-                 checkpoint_dir=None, extra_metadata: dict | None = None):
+                 checkpoint_dir=None, extra_metadata: dict | None = None,
+                 fin_roll_offset: float = 0.0):
     """Build the AeroTable of ``rocket`` (:class:`ironbark_opt.rocket.Rocket`).
 
     Parameters
@@ -59,6 +60,9 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
     workers, progress, use_panair, checkpoint_dir
         As :func:`panair.sweep.build_table`.
     extra_metadata : dict, optional
+    fin_roll_offset : float [rad]
+        Every fin set meshed rolled this much further (from +z toward +y); a
+        roll average of two orthogonal rolls (:mod:`panair.parallel_table`).
     """
     from ironbark_opt.aero.base_drag import BaseDrag
     from ironbark_opt.aero.empirical_drag import separated_pressure_ca
@@ -72,6 +76,10 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
     mach = default_mach_grid() if mach is None else np.asarray(mach, float)
     alpha_deg = np.asarray(DEFAULT_ALPHA_DEG if alpha_deg is None else alpha_deg, float)
     geom = from_rocket(rocket)
+    if fin_roll_offset:
+        import dataclasses
+        geom = dataclasses.replace(geom, fins=tuple(dataclasses.replace(f, roll=(f.roll + fin_roll_offset) % (2 * np.pi))
+                                                    for f in geom.fins))
     sref = rocket.reference_area()
     lref = 2.0 * rocket.reference_radius()
     friction = FrictionDrag(friction_components(rocket, aero_spec.surface_roughness), sref,

@@ -92,6 +92,13 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
         raise InputError(f"must be in (0, {MAX_REFINE:g}], got {refine}", field="--refine")
     if out is not None:
         check_output_path(out, "--out")
+    if Path(rocket).suffix.lower() == ".ork":
+        from ironbark_opt.cli.aero_parallel import build_parallel, ork_with_boosters
+        doc = ork_with_boosters(rocket)
+        if doc is not None:             # parallel boosters: one table per flight configuration
+            return build_parallel(doc, rocket, mach_v, alpha_v, out, workers=workers, refine=refine,
+                                  use_panair=use_panair, progress=not no_progress and not as_json,
+                                  resume=not no_resume, as_json=as_json)
     rk, aero_spec = load_rocket_geometry(rocket)
     # the flight for the grid's reach only once the file is known to be a rocket
     peak = estimated_peak_mach(rocket) if mach_v is None else None
@@ -114,6 +121,24 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
         import shutil
         shutil.rmtree(ckpt, ignore_errors=True)
     md = table.metadata
+    extrapolated, inclination, sonic_le = method_warnings(md)
+    n_sup = md.get("panels_supersonic", 0)
+    result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
+              "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
+              "mach_local_inclination": inclination, "mach_sonic_leading_edge": sonic_le,
+              "mach": mach_v, "peak_mach_estimate": peak,
+              "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
+              "mach_critical": md.get("mach_critical"),
+              "reference_length_m": lref, "moment_reference_x_m": 0.0}
+    human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
+             f"{md['panels']} panels ({n_sup} supersonic), includes {', '.join(table.includes)}")
+    emit(result, as_json, human)
+
+
+def method_warnings(md: dict) -> tuple:
+    """Warn about the Mach numbers and angles a table's metadata ``md`` says were not
+    solved by linear theory as such; returns (alpha_deg_extrapolated,
+    mach_local_inclination, mach_sonic_leading_edge)."""
     extrapolated = md.get("alpha_deg_extrapolated", {})
     if extrapolated:
         warnings.warn("linear supersonic theory did not solve every angle of attack; continued "
@@ -129,27 +154,17 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     if sonic_le:
         warnings.warn("a fin leading edge is sonic at Mach " + ", ".join(f"{m:g}" for m in sonic_le)
                       + ": linear theory's integrable edge load kept there (Jones & Cohen)")
-    n_sup = md.get("panels_supersonic", 0)
-    result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
-              "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
-              "mach_local_inclination": inclination, "mach_sonic_leading_edge": sonic_le,
-              "mach": mach_v, "peak_mach_estimate": peak,
-              "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
-              "mach_critical": md.get("mach_critical"),
-              "reference_length_m": lref, "moment_reference_x_m": 0.0}
-    human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
-             f"{md['panels']} panels ({n_sup} supersonic), includes {', '.join(table.includes)}")
-    emit(result, as_json, human)
+    return extrapolated, inclination, sonic_le
 
 
-def estimated_peak_mach(rocket) -> float | None:
+def estimated_peak_mach(rocket, config: str | None = None) -> float | None:
     """The rocket's peak Mach number [-] from one flight of the file as it is (its own
     aerodynamics: drag curves, a table, or the empirical model; its motor and launch),
     which sets how far the default Mach grid reaches (issue 13: 1.3 x the peak); None
     (and a warning) when the file cannot be flown (e.g. no motor resolvable)."""
     from ironbark_opt import load_setup, simulate
     try:
-        return float(simulate(load_setup(rocket)).summary_values["max_mach"])
+        return float(simulate(load_setup(rocket, config=config)).summary_values["max_mach"])
     except Exception as err:        # best effort: the build itself does not need a flight
         warnings.warn(f"no flight to estimate the peak Mach number ({err}); the default Mach "
                       "grid ends at 2")

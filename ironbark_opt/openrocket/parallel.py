@@ -30,6 +30,12 @@ skin friction of its wetted area, its nose and fin pressure drag
 jets while they burn).  Interference between booster and core is neglected,
 as in OpenRocket; the boosters' fins are counted in the roll damping as if
 they sat on the core's axis (roll does not enter the apogee).
+
+With the tables of ``ironbark aero build`` (``simulate ROCKET.ork --table
+STACK.csv``, :func:`flight_tables`), the stack, the core and the booster fly
+their panel tables instead (:mod:`panair.parallel_table`: the same component
+build-up, each booster panel-solved alone), the boosters' friction, damping
+and jets added as above (:func:`with_booster_table`).
 """
 from __future__ import annotations
 
@@ -72,22 +78,12 @@ def booster_rocket(doc: OrkDocument, pod):
     return geometry(booster_document(doc, pod, pod.x))
 
 
-def with_boosters(aero, booster, count: int, x0: float, *, roughness: float, jet_area: float = 0.0):
-    """``aero`` (the core's :class:`~ironbark_opt.aero.model.AeroModel`, empirical
-    table) plus ``count`` boosters of geometry ``booster`` (a Rocket in its own
-    frame, its front end ``x0`` [m] aft of the core's nose tip), see the module
-    docstring.
-
-    Parameters
-    ----------
-    jet_area : float [m^2]
-        Exit area of all the boosters' jets while they burn (0: unlit).
-    """
-    from ironbark_opt.aero.base_drag import BaseDrag
-    from ironbark_opt.aero.empirical_drag import pressure_ca
+def _booster_lift_and_friction(aero, booster, count: int, x0: float, roughness: float):
+    """(LiftGeometry, FrictionDrag) of ``aero`` with ``count`` boosters added: their
+    Barrowman components (the damping sums; the normal force where no table gives
+    it) and their skin friction, on the core's reference area."""
     from ironbark_opt.aero.friction import FrictionDrag
     from ironbark_opt.aero.model import LiftGeometry, friction_components, lift_geometry
-    from ironbark_opt.aero.table import AeroTable
 
     aref = aero.reference_area
     scale = count * booster.reference_area() / aref
@@ -102,7 +98,27 @@ def with_boosters(aero, booster, count: int, x0: float, *, roughness: float, jet
     fr = aero.friction
     extra = tuple(dataclasses.replace(c, name=f"{booster.name} {c.name} x{count}", wetted_area=count * c.wetted_area)
                   for c in friction_components(booster, roughness))
-    friction = FrictionDrag(fr.components + extra, aref, fr.re_transition)
+    return lift, FrictionDrag(fr.components + extra, aref, fr.re_transition)
+
+
+def with_boosters(aero, booster, count: int, x0: float, *, roughness: float, jet_area: float = 0.0):
+    """``aero`` (the core's :class:`~ironbark_opt.aero.model.AeroModel`, empirical
+    table) plus ``count`` boosters of geometry ``booster`` (a Rocket in its own
+    frame, its front end ``x0`` [m] aft of the core's nose tip), see the module
+    docstring.
+
+    Parameters
+    ----------
+    jet_area : float [m^2]
+        Exit area of all the boosters' jets while they burn (0: unlit).
+    """
+    from ironbark_opt.aero.base_drag import BaseDrag
+    from ironbark_opt.aero.empirical_drag import pressure_ca
+    from ironbark_opt.aero.table import AeroTable
+
+    aref = aero.reference_area
+    scale = count * booster.reference_area() / aref
+    lift, friction = _booster_lift_and_friction(aero, booster, count, x0, roughness)
     t = aero.table
     mach = t.mach
     r_base = float(booster.radius_at(booster.length()))
@@ -118,6 +134,73 @@ def with_boosters(aero, booster, count: int, x0: float, *, roughness: float, jet
                       metadata={**t.metadata, "boosters": f"{count} x '{booster.name}': pressure and base drag "
                                 "added (openrocket.parallel.with_boosters)"})
     return dataclasses.replace(aero, lift=lift, friction=friction, table=table)
+
+
+def with_booster_table(aero, booster, count: int, x0: float, *, roughness: float, jet_area: float = 0.0):
+    """``aero`` built on the stack's table from ``ironbark aero build`` (which holds
+    the boosters' pressure and base drag, normal force and moment:
+    :mod:`panair.parallel_table`) plus what a table leaves to the flight, for the
+    boosters as for the core: their skin friction at the flight's Reynolds
+    number, their fins in the damping sums, and their jets' share of their base
+    taken off while the stack's motors burn (the table's base drag has no jet,
+    Niskanen 2013 sec. 3.4.5; as :func:`with_boosters`)."""
+    from ironbark_opt.aero.base_drag import BaseDrag
+
+    lift, friction = _booster_lift_and_friction(aero, booster, count, x0, roughness)
+    r_base = float(booster.radius_at(booster.length()))
+    jet = min(jet_area, count * math.pi * r_base ** 2)
+    relief = aero.jet_relief
+    if jet > 0 and "base" in aero.includes:
+        core_jet = relief.base_area if relief is not None else 0.0
+        relief = BaseDrag(core_jet + jet, aero.reference_area,
+                          model=aero.table.metadata.get("base_drag_model", "mccoy"))
+    return dataclasses.replace(aero, lift=lift, friction=friction, jet_relief=relief)
+
+
+def flight_tables(table, doc: OrkDocument) -> dict:
+    """``{"stack", "core", "booster"}`` -> table path of a rocket with parallel
+    boosters, from the stack's table ``table`` that ``ironbark aero build`` wrote
+    (its metadata ``parallel_boosters`` names the other two, beside it)."""
+    import json
+    from pathlib import Path
+    stem = Path(table)
+    stem = stem.with_suffix("") if stem.suffix.lower() in (".csv", ".json") else stem
+    meta_path = Path(f"{stem}.json")
+    if not Path(f"{stem}.csv").exists() or not meta_path.exists():
+        raise InputError("aerodynamic table not found (expected the .csv and .json written by 'ironbark aero "
+                         "build')", source=table, field="table")
+    try:
+        info = json.loads(meta_path.read_text()).get("parallel_boosters")
+    except (OSError, ValueError, AttributeError) as err:
+        raise InputError(f"cannot read the table's metadata: {err}", source=meta_path, field="table") from None
+    pod = single_booster_set(doc)
+    if not isinstance(info, dict):
+        raise InputError(f"this table has no parallel boosters; '{doc.path.name}' flies with '{pod.name}': give "
+                         "the stack's table that 'ironbark aero build' wrote for it", source=meta_path,
+                         field="table")
+    if info.get("set") != pod.name or info.get("count") != pod.geo["instances"]:
+        raise InputError(f"the table was built for {info.get('count')} x '{info.get('set')}', the rocket has "
+                         f"{pod.geo['instances']} x '{pod.name}'", source=meta_path, field="parallel_boosters")
+    out = {"stack": Path(f"{stem}.csv")}
+    for key in ("core", "booster"):
+        name = info.get(f"{key}_table")
+        path = meta_path.parent / str(name)
+        if not name or not path.with_suffix(".csv").exists():
+            raise InputError(f"the {key}'s table {name!r} named by the stack's is not beside it",
+                             source=meta_path, field=f"parallel_boosters.{key}_table")
+        out[key] = path.with_suffix(".csv")
+    return out
+
+
+def single_booster_set(doc: OrkDocument):
+    """The one set of parallel boosters on a single core stage (InputError otherwise)."""
+    if len(doc.rocket.stages) > 1:
+        raise InputError("parallel boosters on a rocket with serial stages are not supported yet",
+                         source=doc.path, field=doc.rocket.stages[1].path)
+    if len(doc.rocket.pods) > 1:
+        raise InputError("more than one set of parallel boosters is not supported yet", source=doc.path,
+                         field=doc.rocket.pods[1].path)
+    return doc.rocket.pods[0]
 
 
 def _mounts(doc: OrkDocument, cfg, pod):
@@ -148,22 +231,19 @@ def _booster_spec(doc, mount, entry, count: int) -> MotorSpec:
     return MotorSpec(file=path, designation=designation, nozzle_x=nozzle_x(mount, entry))
 
 
-def parallel_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
+def parallel_setup(doc: OrkDocument, config: str | None = None, *, tables: dict | None = None, **setup_kwargs):
     """The flight setup of a configuration of a rocket with parallel boosters:
-    a StagedSetup when they separate, else a FlightSetup carrying them."""
+    a StagedSetup when they separate, else a FlightSetup carrying them.
+
+    ``tables`` (:func:`flight_tables`): fly the stack, the core and the booster on
+    the tables ``ironbark aero build`` wrote instead of the empirical estimate."""
     from ironbark_opt.aero.tumble import tumble_cd_area
     from ironbark_opt.dynamics.staged import StagedSetup
     from ironbark_opt.motors.composite import DelayedMotor
     from ironbark_opt.rocket.toml_io import RocketFile
     from ironbark_opt.vehicle import jet_area_of, load_motor_for, setup_from_file
 
-    if len(doc.rocket.stages) > 1:
-        raise InputError("parallel boosters on a rocket with serial stages are not supported yet",
-                         source=doc.path, field=doc.rocket.stages[1].path)
-    if len(doc.rocket.pods) > 1:
-        raise InputError("more than one set of parallel boosters is not supported yet", source=doc.path,
-                         field=doc.rocket.pods[1].path)
-    pod = doc.rocket.pods[0]
+    pod = single_booster_set(doc)
     count = pod.geo["instances"]
     cfg, sim = doc.config_and_simulation(config)
     (m_c, e_c), booster_motor = _mounts(doc, cfg, pod)
@@ -181,7 +261,7 @@ def parallel_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
         spec = dataclasses.replace(spec_c, airstart=((spec_b, 0.0),))
     rocket = geometry(doc)                               # the core; mass with the boosters
     chutes = () if separates else recovery(doc, cfg.config_id)
-    aero_spec = AeroSpec(table=_aero_table_path(rocket, dataclasses.replace(
+    aero_spec = AeroSpec(table=tables["stack"] if tables else _aero_table_path(rocket, dataclasses.replace(
         doc, path=doc.path.with_name(f"{doc.path.stem}-stack{doc.path.suffix}"))))
     stack = setup_from_file(RocketFile(rocket, spec, aero_spec, launch, chutes, BallastSpec(), doc.path),
                             **setup_kwargs)
@@ -189,14 +269,15 @@ def parallel_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
     if booster_motor is not None:
         # each booster motor's exit (or cross-section, OpenRocket's rule) x the number of motors
         jet = jet_area_of(load_motor_for(spec_b))[0] * count * booster_motor[0].cluster_count
-    stack = dataclasses.replace(stack, aero=with_boosters(stack.aero, booster_rocket(doc, pod), count, pod.x,
-                                                          roughness=aero_spec.surface_roughness, jet_area=jet),
+    add = with_booster_table if tables else with_boosters
+    stack = dataclasses.replace(stack, aero=add(stack.aero, booster_rocket(doc, pod), count, pod.x,
+                                                roughness=aero_spec.surface_roughness, jet_area=jet),
                                 name=f"{doc.name} (with {pod.name})" if separates else doc.name)
     if not separates:
         return stack
     # the core after separation: its own dry mass, its motor still burning
     core = rocket.with_mass_override(ormass.rocket_mass(doc.rocket.stages, parallel=False))
-    aero_c = AeroSpec(table=_aero_table_path(core, dataclasses.replace(
+    aero_c = AeroSpec(table=tables["core"] if tables else _aero_table_path(core, dataclasses.replace(
         doc, path=doc.path.with_name(f"{doc.path.stem}-core{doc.path.suffix}"))))
     sustainer = setup_from_file(RocketFile(core, spec_c, aero_c, launch, recovery(doc, cfg.config_id),
                                            BallastSpec(), doc.path), **setup_kwargs)
@@ -211,7 +292,7 @@ def parallel_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
     one = booster_rocket(doc, pod)
     spec_one = dataclasses.replace(_motor_spec(doc, *booster_motor), nozzle_x=spec_b.nozzle_x - pod.x)
     b_doc = booster_document(doc, pod, shift=pod.x)
-    aero_b = AeroSpec(table=_aero_table_path(one, dataclasses.replace(
+    aero_b = AeroSpec(table=tables["booster"] if tables else _aero_table_path(one, dataclasses.replace(
         b_doc, path=doc.path.with_name(f"{doc.path.stem}-booster{doc.path.suffix}"))))
     booster = setup_from_file(RocketFile(one, spec_one, aero_b, launch, recovery(b_doc, cfg.config_id),
                                          BallastSpec(), doc.path), **setup_kwargs)
