@@ -260,9 +260,9 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     table : path-like or sequence of them, optional
         An AeroTable (e.g. from ``ironbark aero build``) replacing the file's
         aerodynamic input (table, drag curves or the empirical estimate); for a
-        serial multi-stage .ork, the table of each flight configuration (the
-        stack's and the sustainer's, any order: each names its configuration,
-        :func:`ironbark_opt.openrocket.stage_tables.tables_by_configuration`).
+        serial two-stage .ork or ``[[stage]]`` TOML, the table of each flight
+        configuration (the stack's and the sustainer's, any order: each names its
+        configuration, :func:`ironbark_opt.openrocket.stage_tables.tables_by_configuration`).
     kwargs
         As in :func:`setup_from_file`.
     """
@@ -281,16 +281,20 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
                 from ironbark_opt.openrocket.stage_tables import tables_by_configuration
                 kwargs = {**kwargs, "tables": tables_by_configuration(doc, tables)}
             return (parallel_setup if doc.rocket.pods else staged_setup)(doc, config, **kwargs)
+    rf = load_rocket_file(path, config=config)
+    if rf.stages:
+        from ironbark_opt.staged_vehicle import stage_configurations_from_toml, staged_setup_from_toml
+        if table is not None:         # the stack's replaces [[stage]]'s data, the sustainer's [aero]'s
+            from ironbark_opt.openrocket.stage_tables import tables_by_configuration
+            found = tables_by_configuration(path, tables, stage_configurations_from_toml(rf))
+            rf = dataclasses.replace(
+                rf, aero=dataclasses.replace(rf.aero, table=found["sustainer"], drag_power_off=None,
+                                             drag_power_on=None),
+                stages=tuple(dataclasses.replace(st, aero={"table": found["stack"]}) for st in rf.stages))
+        return staged_setup_from_toml(rf, **kwargs)
     if len(tables) > 1:
         raise InputError(f"{len(tables)} tables given: a single-stage rocket flies one", source=path,
                          field="table")
-    rf = load_rocket_file(path, config=config)
-    if rf.stages:
-        from ironbark_opt.staged_vehicle import staged_setup_from_toml
-        if table is not None:
-            raise InputError("--table applies to single-stage rockets (give the stack's table in [[stage]] "
-                             "and the sustainer's in [aero])", source=path, field="table")
-        return staged_setup_from_toml(rf, **kwargs)
     if table is not None:
         rf = dataclasses.replace(rf, aero=dataclasses.replace(
             rf.aero, table=table, drag_power_off=None, drag_power_on=None))
@@ -337,7 +341,11 @@ def load_stage_configurations(path):
     what ``ironbark aero build`` builds one table per."""
     path = _existing(path)
     if path.suffix.lower() != ".ork":
-        return None
+        rf = load_rocket_file(path)
+        if not rf.stages:
+            return None
+        from ironbark_opt.staged_vehicle import stage_configurations_from_toml
+        return stage_configurations_from_toml(rf)
     from ironbark_opt.openrocket import read_ork
     doc = read_ork(path)
     if len(doc.rocket.stages) < 2 or doc.rocket.pods:

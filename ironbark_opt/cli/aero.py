@@ -60,8 +60,8 @@ def aero_group():
               help="Angles of attack solved by the panel method [deg] (comma-separated, "
                    "from 0); 30, 45, 60, 75, 90 deg are added by the high-angle model.")
 @click.option("--out", "out", default=None, type=click.Path(),
-              help="Table path stem (default tables/<rocket name>; a multi-stage .ork writes "
-                   "STEM-stack and STEM-sustainer).")
+              help="Table path stem (default tables/<rocket name>; a two-stage rocket (.ork, or "
+                   "TOML with [[stage]]) writes STEM-stack and STEM-sustainer).")
 @click.option("--workers", default=2, show_default=True, help="Parallel processes (Mach).")
 @click.option("--refine", default=1.0, show_default=True, help="Mesh refinement factor.")
 @click.option("--panair", "use_panair", is_flag=True,
@@ -76,7 +76,8 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
           as_json):
     """Build the AeroTable of ROCKET (a rocket TOML or OpenRocket .ork file).
 
-    A serial multi-stage .ork gets one table per flight configuration: OUT-stack
+    A serial multi-stage rocket (.ork, or a TOML with [[stage]]) gets one table per
+    flight configuration: OUT-stack
     (every stage, before the first separation), OUT-sustainer (the top stage
     alone; OUT-upper<n> for the top n stages of a taller stack), each meshed from
     its own geometry; fly them with one --table per table."""
@@ -104,7 +105,8 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
         parts = [(None, rk)]
     else:                               # serial stages: one table per flight configuration
         from ironbark_opt.rocket.specs import AeroSpec
-        aero_spec, parts = AeroSpec(), [(c, c.rocket) for c in configs]
+        aero_spec = AeroSpec() if Path(rocket).suffix.lower() == ".ork" else load_rocket_geometry(rocket)[1]
+        parts = [(c, c.rocket) for c in configs]
     # the flight for the grid's reach only once the file is known to be a rocket
     peak = estimated_peak_mach(rocket) if mach_v is None else None
     if mach_v is None:

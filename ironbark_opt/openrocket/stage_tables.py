@@ -10,7 +10,9 @@ stage alone) and ``upper<n>`` (the top ``n`` stages, for N > 2).  A staged
 flight (:func:`ironbark_opt.openrocket.staging.staged_setup`) flies the table
 whose metadata names its configuration (:func:`tables_by_configuration`).  A
 separated lower stage falling on its own keeps the empirical estimate of its
-geometry (no table is built for it).
+geometry (no table is built for it).  A rocket TOML with a ``[[stage]]`` table
+has the same two configurations
+(:func:`ironbark_opt.staged_vehicle.stage_configurations_from_toml`).
 """
 from __future__ import annotations
 
@@ -73,9 +75,10 @@ def configurations(doc) -> list[StageConfiguration]:
     return out
 
 
-def tables_by_configuration(doc, tables) -> dict[str, Path]:
+def tables_by_configuration(doc, tables, known=None) -> dict[str, Path]:
     """Each table of ``tables`` (paths of ``aero build`` tables, any order) keyed
-    by the configuration of ``doc`` its metadata names.
+    by the configuration of ``doc`` (an OrkDocument, or with ``known`` the
+    configurations of another file and ``doc`` its path) its metadata names.
 
     Raises InputError for a table built for no configuration of this design
     (a single-stage table, another rocket's stages), two tables of one
@@ -83,24 +86,27 @@ def tables_by_configuration(doc, tables) -> dict[str, Path]:
     """
     from ironbark_opt.aero.table import AeroTable
 
-    known = {c.key: c for c in configurations(doc)}
+    if known is None:
+        known, doc = configurations(doc), doc.path
+    known = {c.key: c for c in known}
+    doc = Path(doc)
     found: dict[str, Path] = {}
     for path in tables:
         meta = AeroTable.load(path).metadata
         key, names = meta.get(CONFIG_KEY), meta.get(STAGES_KEY)
         if key is None:
             raise InputError(f"not the table of a stage configuration (no '{CONFIG_KEY}' in its metadata): "
-                             f"'ironbark aero build {doc.path.name}' writes one table per configuration "
+                             f"'ironbark aero build {doc.name}' writes one table per configuration "
                              f"({', '.join(known)}); give each with --table", source=path, field="table")
         conf = known.get(key)
         if conf is None or list(conf.stages) != list(names or []):
             raise InputError(f"built for configuration '{key}' (stages {', '.join(names or [])}), which "
-                             f"{doc.path.name} does not have; its configurations: "
+                             f"{doc.name} does not have; its configurations: "
                              + "; ".join(f"{c.key} ({', '.join(c.stages)})" for c in known.values()),
                              source=path, field="table")
         length = meta.get(LENGTH_KEY)
         if length is None or abs(float(length) - conf.rocket.length()) > LENGTH_TOL_M:
-            raise InputError(f"built for a '{key}' {length} m long; {doc.path.name}'s is "
+            raise InputError(f"built for a '{key}' {length} m long; {doc.name}'s is "
                              f"{conf.rocket.length():.4f} m (the design changed? build its tables again)",
                              source=path, field="table")
         if key in found:
@@ -111,5 +117,5 @@ def tables_by_configuration(doc, tables) -> dict[str, Path]:
     if missing:
         raise InputError(f"no table for configuration {' and '.join(repr(k) for k in missing)}: a staged "
                          f"flight flies the table of each configuration (or none: the empirical estimate); "
-                         f"give each with --table", source=doc.path, field="table")
+                         f"give each with --table", source=doc, field="table")
     return found
