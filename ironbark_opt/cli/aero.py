@@ -181,8 +181,10 @@ def _save(table, rk, stem, ckpt, label: str) -> tuple[dict, str]:
 def estimated_peak_mach(rocket) -> float | None:
     """The rocket's peak Mach number [-] from one flight of the file as it is (its own
     aerodynamics: drag curves, a table, or the empirical model; its motor and launch),
-    which sets how far the default Mach grid reaches (issue 13: 1.3 x the peak); None
-    (and a warning) when the file cannot be flown (e.g. no motor resolvable)."""
+    which sets how far the default Mach grid reaches (issue 13: 1.3 x the peak); a staged
+    rocket's is the whole staged flight's (stack and sustainer: every configuration's
+    table gets the same grid); None (and a warning) when the file cannot be flown (e.g.
+    no motor resolvable)."""
     from ironbark_opt import load_setup, simulate
     try:
         return float(simulate(load_setup(rocket)).summary_values["max_mach"])
