@@ -151,14 +151,18 @@ def main():
             if res is None:
                 print(f"{label:34s} {wall:7.1f} {cpu:7.1f}  FAILED ({err})  load {load0:.1f}/{load1:.1f}")
                 continue
-            csv = Path(res["table_csv"])
-            ca_min, m_at = min_zero_alpha_pressure_base(csv)
             ok = wall <= GOAL_S
             n_pass += ok
-            cmp = compare(csv, args.compare / csv.name) if args.compare else ""
-            print(f"{label:34s} {wall:7.1f} {cpu:7.1f} {len(res['mach']):4d} "
-                  f"{res['panels']:5d}/{res['panels_supersonic']:5d} {'PASS' if ok else 'FAIL':>5s} "
-                  f"{ca_min:+9.4f} @M{m_at:<5g}  {load0:5.1f}/{load1:5.1f}  {cmp}", flush=True)
+            # a multi-stage rocket: one table per flight configuration (stack, sustainer)
+            for k, tab in enumerate(res.get("tables", [res])):
+                csv = Path(tab["table_csv"])
+                ca_min, m_at = min_zero_alpha_pressure_base(csv)
+                cmp = compare(csv, args.compare / csv.name) if args.compare else ""
+                name = label if "configuration" not in tab else f"{label}:{tab['configuration']}"
+                head = (f"{wall:7.1f} {cpu:7.1f} {len(res['mach']):4d}" if k == 0 else f"{'':20s}")
+                print(f"{name:34s} {head} {tab['panels']:5d}/{tab['panels_supersonic']:5d} "
+                      f"{'PASS' if ok else 'FAIL':>5s} {ca_min:+9.4f} @M{m_at:<5g}  {load0:5.1f}/{load1:5.1f}  {cmp}",
+                      flush=True)
     print(f"{n_pass}/{len(todo)} within {GOAL_S:g} s; {_uptime()}")
 
 

@@ -89,6 +89,23 @@ def stacked_rocket(upper, lower, name: str):
     return Rocket(name, comps, mass_override=mass), x0
 
 
+def stage_configurations_from_toml(rf):
+    """The stack and the sustainer of a rocket TOML with one ``[[stage]]`` table
+    (:func:`staged_setup_from_toml`'s geometry; StageConfiguration objects)."""
+    from ironbark_opt.openrocket.stage_tables import StageConfiguration
+    from ironbark_opt.rocket.toml_io import load_rocket_toml
+
+    if len(rf.stages) != 1:
+        raise InputError(f"{len(rf.stages)} [[stage]] tables: two-stage rockets (one [[stage]]) are "
+                         "supported so far", source=rf.source, field="stage")
+    st = rf.stages[0]
+    brf = load_rocket_toml(st.file)
+    upper = rf.rocket.name
+    stack, _ = stacked_rocket(rf.rocket, brf.rocket, upper)
+    return [StageConfiguration("stack", (upper, st.name or brf.rocket.name), stack),
+            StageConfiguration("sustainer", (upper,), rf.rocket)]
+
+
 def staged_setup_from_toml(rf, **setup_kwargs):
     """The StagedSetup of a rocket TOML with a ``[[stage]]`` table (the file itself
     describes the sustainer; the stage's own rocket file the booster, in its own

@@ -257,12 +257,17 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
     path : path-like
     config : str, optional
         Motor configuration of an OpenRocket file (default: its selected one).
-    table : path-like, optional
+    table : path-like or sequence of them, optional
         An AeroTable (e.g. from ``ironbark aero build``) replacing the file's
-        aerodynamic input (table, drag curves or the empirical estimate).
+        aerodynamic input (table, drag curves or the empirical estimate); for a
+        serial two-stage .ork or ``[[stage]]`` TOML, the table of each flight
+        configuration (the stack's and the sustainer's, any order: each names its
+        configuration, :func:`ironbark_opt.openrocket.stage_tables.tables_by_configuration`).
     kwargs
         As in :func:`setup_from_file`.
     """
+    tables = table_paths(table)
+    table = tables[0] if tables else None
     if Path(path).suffix.lower() == ".ork":
         from ironbark_opt.openrocket import read_ork
         doc = read_ork(_existing(path))
@@ -273,26 +278,47 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
         if len(doc.rocket.stages) > 1 or doc.rocket.pods:
             from ironbark_opt.openrocket.parallel import parallel_setup
             from ironbark_opt.openrocket.staging import staged_setup
-            if table is not None:
+            if table is not None and doc.rocket.pods:
                 raise InputError("--table applies to single-stage rockets (each stage of a staged rocket "
                                  "flies its own aerodynamics)", source=path, field="table")
+            if table is not None:            # serial stages: one table per flight configuration
+                from ironbark_opt.openrocket.stage_tables import tables_by_configuration
+                kwargs = {**kwargs, "tables": tables_by_configuration(doc, tables)}
             return (parallel_setup if doc.rocket.pods else staged_setup)(doc, config, **kwargs)
     rf = load_rocket_file(path, config=config)
     if rf.stages:
-        from ironbark_opt.staged_vehicle import staged_setup_from_toml
-        if table is not None:
-            raise InputError("--table applies to single-stage rockets (give the stack's table in [[stage]] "
-                             "and the sustainer's in [aero])", source=path, field="table")
+        from ironbark_opt.staged_vehicle import stage_configurations_from_toml, staged_setup_from_toml
+        if table is not None:         # the stack's replaces [[stage]]'s data, the sustainer's [aero]'s
+            from ironbark_opt.openrocket.stage_tables import tables_by_configuration
+            found = tables_by_configuration(path, tables, stage_configurations_from_toml(rf))
+            rf = dataclasses.replace(
+                rf, aero=dataclasses.replace(rf.aero, table=found["sustainer"], drag_power_off=None,
+                                             drag_power_on=None),
+                stages=tuple(dataclasses.replace(st, aero={"table": found["stack"]}) for st in rf.stages))
         return staged_setup_from_toml(rf, **kwargs)
+    if len(tables) > 1:
+        raise InputError(f"{len(tables)} tables given: a single-stage rocket flies one", source=path,
+                         field="table")
     if table is not None:
-        table = Path(table)
-        stem = table.with_suffix("") if table.suffix.lower() in (".csv", ".json") else table
-        if not Path(f"{stem}.csv").exists():
-            raise InputError("aerodynamic table not found (expected the .csv written by "
-                             "'ironbark aero build')", source=table, field="table")
         rf = dataclasses.replace(rf, aero=dataclasses.replace(
             rf.aero, table=table, drag_power_off=None, drag_power_on=None))
     return setup_from_file(rf, **kwargs)
+
+
+def table_paths(table) -> tuple:
+    """``table`` (None, one path or a sequence: the CLI's repeatable ``--table``) as
+    a tuple of Paths whose ``.csv`` exists."""
+    if table is None or isinstance(table, (str, Path)):
+        table = () if table is None else (table,)
+    out = []
+    for t in table:
+        t = Path(t)
+        stem = t.with_suffix("") if t.suffix.lower() in (".csv", ".json") else t
+        if not Path(f"{stem}.csv").exists():
+            raise InputError("aerodynamic table not found (expected the .csv written by "
+                             "'ironbark aero build')", source=t, field="table")
+        out.append(t)
+    return tuple(out)
 
 
 def load_rocket_geometry(path):
@@ -310,6 +336,26 @@ def load_rocket_geometry(path):
         return load_ork_geometry(path), AeroSpec()
     rf = load_rocket_file(path)                 # a TOML file resolves no motor on loading
     return rf.rocket, rf.aero
+
+
+def load_stage_configurations(path):
+    """The flight configurations of a serial multi-stage rocket file, each with its
+    geometry (:class:`~ironbark_opt.openrocket.stage_tables.StageConfiguration`, the
+    stack first), or None for a file of one stage (parallel boosters included):
+    what ``ironbark aero build`` builds one table per."""
+    path = _existing(path)
+    if path.suffix.lower() != ".ork":
+        rf = load_rocket_file(path)
+        if not rf.stages:
+            return None
+        from ironbark_opt.staged_vehicle import stage_configurations_from_toml
+        return stage_configurations_from_toml(rf)
+    from ironbark_opt.openrocket import read_ork
+    doc = read_ork(path)
+    if len(doc.rocket.stages) < 2 or doc.rocket.pods:
+        return None
+    from ironbark_opt.openrocket.stage_tables import configurations
+    return configurations(doc)
 
 
 def _existing(path) -> Path:

@@ -478,12 +478,17 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
     R = np.interp(X, xs, rs)
     no_force = np.zeros((len(theta) - 1, len(xs) - 1), bool)
     xc = 0.5 * (xs[:-1] + xs[1:])
+    # fins in line (a booster's behind a sustainer's, same roll) share the two lines:
+    # each line opens along every root on it
+    opened: dict[int, np.ndarray] = {}
     for f, phi, th in fin_angles:
         xi = xs - f.x_root
         h = np.where((xi >= 0) & (xi <= f.root_chord), f.half_thickness(xi, f.root_chord), 0.0)
-        dang = np.arcsin(np.clip(h / np.maximum(rs, 1e-300), 0.0, 1.0))
         lo = int(np.argmin(np.abs(theta - (th - eps))))
         hi = int(np.argmin(np.abs(theta - (th + eps))))
+        dang = np.maximum(np.arcsin(np.clip(h / np.maximum(rs, 1e-300), 0.0, 1.0)),
+                          opened.get(lo, 0.0))
+        opened[lo] = dang
         T[lo] = th - dang
         T[hi] = th + dang
         inside = (xc > f.x_root) & (xc < f.x_root + f.root_chord)
@@ -508,11 +513,41 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         far = ring + np.array([opt.wake_length * length, 0, 0])
         nets.append(Network("basewake", np.stack([ring, far], axis=1), "wake"))
     for k, (f, phi, th) in enumerate(fin_angles):
-        nets.extend(_fin_networks(f, phi, body, opt, k, length))
+        behind = [g for g, _, th2 in fin_angles
+                  if abs(th2 - th) < 1e-9 and g.x_root >= f.x_root + f.root_chord - 1e-12]
+        nets.extend(_fin_networks(f, phi, body, opt, k, length,
+                                  min(behind, key=lambda g: g.x_root) if behind else None))
     return nets
 
 
-def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
+def _wake_through(te, far, aft: FinGeometry, body) -> tuple[np.ndarray, np.ndarray]:
+    """A trailing-edge wake (points ``te`` -> ``far``, one line per span station) that
+    meets the fin ``aft`` in line behind it (a booster's fins behind a sustainer's,
+    same roll): points te, aft leading edge, far, and the mask of the panels left
+    out (``interior``): the wake of a span station inside the aft fin's span ends
+    on the aft fin's leading edge.
+
+    Through a thick fin the sheet put that fin's control points on it, where the
+    doublet potential jumps (the stack's system was singular: CN ~1e4).  Ending it
+    there is the continuous problem's wake through the fin: the part inside the
+    closed fin does not change the flow outside (Green's theorem: an interior doublet
+    sheet is absorbed by the surface doublets of the Dirichlet formulation), and the
+    fin's own Kutta condition sheds at its trailing edge the whole jump mu_upper -
+    mu_lower, the circulation of the fin ahead included (a wake restarted from the
+    aft trailing edge counted it twice: stack CN-alpha 60-200 /rad).  Span stations
+    outside the aft fin's span keep their straight wake."""
+    r = np.hypot(te[:, 1], te[:, 2])
+    frac = (r - float(body.radius_at(aft.x_root))) / aft.span
+    inside = (frac >= -1e-9) & (frac <= 1.0 + 1e-9)
+    x_le = aft.x_root + np.array([aft.le_at(v) for v in np.clip(frac, 0.0, 1.0)])
+    pts = np.stack([te, te, far], axis=1)
+    pts[:, 1, 0] = np.clip(np.where(inside, x_le, aft.x_root), te[:, 0], far[:, 0])
+    interior = np.zeros((len(te) - 1, 2), bool)
+    interior[:, 1] = inside[:-1] & inside[1:]        # a strip with both stations inside
+    return pts, interior
+
+
+def _fin_networks(f: FinGeometry, phi, body, opt, k, length, behind: FinGeometry | None = None):
     e_r = np.array([0.0, np.sin(phi), np.cos(phi)])      # spanwise
     e_t = np.array([0.0, np.cos(phi), -np.sin(phi)])     # thickness (e_r x e_t = -x ... any)
     n_c = opt.scaled("n_chord")
@@ -577,8 +612,12 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length):
             capn = Network(f"cap{k}", cap[::-1], "surface")
         out.append(capn)
     te = net.points[:, 0]
-    wake = np.stack([te, te + np.array([opt.wake_length * length, 0, 0])], axis=1)
-    out.append(Network(f"wake{k}", wake, "wake"))
+    far = te + np.array([opt.wake_length * length, 0, 0])
+    if behind is None:
+        out.append(Network(f"wake{k}", np.stack([te, far], axis=1), "wake"))
+    else:                                       # through the fin in line behind
+        wake, interior = _wake_through(te, far, behind, body)
+        out.append(Network(f"wake{k}", wake, "wake", {"interior": interior}))
     return out
 
 

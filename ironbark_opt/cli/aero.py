@@ -60,7 +60,9 @@ def aero_group():
               help="Angles of attack solved by the panel method [deg] (comma-separated, "
                    "from 0); 30, 45, 60, 75, 90 deg are added by the high-angle model.")
 @click.option("--out", "out", default=None, type=click.Path(),
-              help="Table path stem (default tables/<rocket name>).")
+              help="Table path stem (default tables/<rocket name>; a two-stage rocket (.ork, or "
+                   "TOML with [[stage]]) writes STEM-stack and STEM-sustainer; an .ork with "
+                   "parallel boosters STEM, STEM-core and STEM-booster).")
 @click.option("--workers", default=2, show_default=True, help="Parallel processes (Mach).")
 @click.option("--refine", default=1.0, show_default=True, help="Mesh refinement factor.")
 @click.option("--panair", "use_panair", is_flag=True,
@@ -73,8 +75,14 @@ def aero_group():
 @handle_errors
 def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress, no_resume,
           as_json):
-    """Build the AeroTable of ROCKET (a rocket TOML or OpenRocket .ork file)."""
-    from ironbark_opt.vehicle import load_rocket_geometry
+    """Build the AeroTable of ROCKET (a rocket TOML or OpenRocket .ork file).
+
+    A serial multi-stage rocket (.ork, or a TOML with [[stage]]) gets one table per
+    flight configuration: OUT-stack
+    (every stage, before the first separation), OUT-sustainer (the top stage
+    alone; OUT-upper<n> for the top n stages of a taller stack), each meshed from
+    its own geometry; fly them with one --table per table."""
+    from ironbark_opt.vehicle import load_rocket_geometry, load_stage_configurations
     from panair.rocket_table import default_mach_grid, rocket_table
 
     mach_v = None if mach is None else _floats(mach, "--mach")
@@ -99,60 +107,89 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
             return build_parallel(doc, rocket, mach_v, alpha_v, out, workers=workers, refine=refine,
                                   use_panair=use_panair, progress=not no_progress and not as_json,
                                   resume=not no_resume, as_json=as_json)
-    rk, aero_spec = load_rocket_geometry(rocket)
+    configs = load_stage_configurations(rocket)
+    if configs is None:
+        rk, aero_spec = load_rocket_geometry(rocket)
+        parts = [(None, rk)]
+    else:                               # serial stages: one table per flight configuration
+        from ironbark_opt.rocket.specs import AeroSpec
+        aero_spec = AeroSpec() if Path(rocket).suffix.lower() == ".ork" else load_rocket_geometry(rocket)[1]
+        parts = [(c, c.rocket) for c in configs]
     # the flight for the grid's reach only once the file is known to be a rocket
     peak = estimated_peak_mach(rocket) if mach_v is None else None
     if mach_v is None:
         mach_v = default_mach_grid(peak)
-    sref = rk.reference_area()
-    lref = 2.0 * rk.reference_radius()
     if out is None:
-        slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", rk.name).strip("_") or "rocket"
+        slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", parts[0][1].name).strip("_") or "rocket"
         out = Path("tables") / slug
-    ckpt = None if no_resume else Path(str(out) + ".solved")
-    table = rocket_table(rk, aero_spec, mach_v, alpha_v, refine=refine, workers=workers,
-                         progress=not no_progress and not as_json, use_panair=use_panair,
-                         checkpoint_dir=ckpt, extra_metadata={"rocket_file": str(rocket),
-                                                              "peak_mach_estimate": peak})
-    alpha_v = table.alpha                                  # [rad], with the high-angle model
-    Path(out).parent.mkdir(parents=True, exist_ok=True)
-    csv_path, json_path = table.save(out)
+    built = []
+    for conf, rk in parts:
+        stem = Path(out) if conf is None else Path(f"{out}-{conf.key}")
+        ckpt = None if no_resume else Path(str(stem) + ".solved")
+        extra = {"rocket_file": str(rocket), "peak_mach_estimate": peak,
+                 **(conf.metadata() if conf is not None else {})}
+        table = rocket_table(rk, aero_spec, mach_v, alpha_v, refine=refine, workers=workers,
+                             progress=not no_progress and not as_json, use_panair=use_panair,
+                             checkpoint_dir=ckpt, extra_metadata=extra)
+        built.append((conf, rk, stem, ckpt, table))
+    # every table solved before any is written: a failed build leaves no part of the set
+    results, lines = [], []
+    for conf, rk, stem, ckpt, table in built:
+        res, line = _save(table, rk, stem, ckpt, "" if conf is None else f"{conf.key}: ")
+        if conf is not None:
+            res = {"configuration": conf.key, "stages": list(conf.stages), "length_m": rk.length(), **res}
+        results.append(res)
+        lines.append(line)
+    common = {"mach": mach_v, "peak_mach_estimate": peak, "alpha_deg": np.degrees(built[0][4].alpha)}
+    if configs is None:
+        emit({**results[0], **common}, as_json, lines[0])
+        return
+    import shlex
+    fly = " ".join(f"--table {shlex.quote(r['table_csv'])}" for r in results)
+    emit({"tables": results, **common}, as_json,
+         "\n".join(lines) + f"\nfly them: ironbark simulate {shlex.quote(str(rocket))} {fly}")
+
+
+def _save(table, rk, stem, ckpt, label: str) -> tuple[dict, str]:
+    """Write ``table`` at ``stem``, drop its per-Mach saves, warn about the methods
+    some Mach numbers needed; (JSON result, one human line)."""
+    Path(stem).parent.mkdir(parents=True, exist_ok=True)
+    csv_path, json_path = table.save(stem)
     if ckpt is not None and ckpt.is_dir():          # built: the per-Mach saves are not needed
         import shutil
         shutil.rmtree(ckpt, ignore_errors=True)
     md = table.metadata
-    extrapolated, inclination, sonic_le = method_warnings(md)
+    extrapolated, inclination, sonic_le = method_warnings(md, label)
     n_sup = md.get("panels_supersonic", 0)
     result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
               "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
               "mach_local_inclination": inclination, "mach_sonic_leading_edge": sonic_le,
-              "mach": mach_v, "peak_mach_estimate": peak,
-              "alpha_deg": np.degrees(alpha_v), "reference_area_m2": sref,
-              "mach_critical": md.get("mach_critical"),
-              "reference_length_m": lref, "moment_reference_x_m": 0.0}
-    human = (f"wrote {csv_path} and {json_path}: {len(mach_v)} Mach x {len(alpha_v)} alpha, "
+              "reference_area_m2": rk.reference_area(), "mach_critical": md.get("mach_critical"),
+              "reference_length_m": 2.0 * rk.reference_radius(), "moment_reference_x_m": 0.0}
+    human = (f"{label}wrote {csv_path} and {json_path}: {len(table.mach)} Mach x {len(table.alpha)} alpha, "
              f"{md['panels']} panels ({n_sup} supersonic), includes {', '.join(table.includes)}")
-    emit(result, as_json, human)
+    return result, human
 
 
-def method_warnings(md: dict) -> tuple:
-    """Warn about the Mach numbers and angles a table's metadata ``md`` says were not
-    solved by linear theory as such; returns (alpha_deg_extrapolated,
-    mach_local_inclination, mach_sonic_leading_edge)."""
+def method_warnings(md: dict, label: str = "") -> tuple:
+    """Warn (each message prefixed by ``label``) about the Mach numbers and angles a
+    table's metadata ``md`` says were not solved by linear theory as such; returns
+    (alpha_deg_extrapolated, mach_local_inclination, mach_sonic_leading_edge)."""
     extrapolated = md.get("alpha_deg_extrapolated", {})
     if extrapolated:
-        warnings.warn("linear supersonic theory did not solve every angle of attack; continued "
+        warnings.warn(f"{label}linear supersonic theory did not solve every angle of attack; continued "
                       "with Jorgensen's potential-flow shape at Mach: " + "; ".join(
                           f"{m} ({', '.join(f'{a:g}' for a in al)} deg)"
                           for m, al in extrapolated.items()))
     inclination = md.get("mach_local_inclination", [])
     if inclination:
-        warnings.warn("linear supersonic theory has no solution at Mach " + ", ".join(f"{m:g}" for m in inclination)
+        warnings.warn(f"{label}linear supersonic theory has no solution at Mach "
+                      + ", ".join(f"{m:g}" for m in inclination)
                       + " (a surface steeper than the Mach cone): those Mach numbers use the local-inclination "
                         "method (tangent cone / tangent wedge, no fin-body carry-over; less accurate)")
     sonic_le = md.get("mach_sonic_leading_edge", [])
     if sonic_le:
-        warnings.warn("a fin leading edge is sonic at Mach " + ", ".join(f"{m:g}" for m in sonic_le)
+        warnings.warn(f"{label}a fin leading edge is sonic at Mach " + ", ".join(f"{m:g}" for m in sonic_le)
                       + ": linear theory's integrable edge load kept there (Jones & Cohen)")
     return extrapolated, inclination, sonic_le
 
@@ -160,8 +197,11 @@ def method_warnings(md: dict) -> tuple:
 def estimated_peak_mach(rocket, config: str | None = None) -> float | None:
     """The rocket's peak Mach number [-] from one flight of the file as it is (its own
     aerodynamics: drag curves, a table, or the empirical model; its motor and launch),
-    which sets how far the default Mach grid reaches (issue 13: 1.3 x the peak); None
-    (and a warning) when the file cannot be flown (e.g. no motor resolvable)."""
+    which sets how far the default Mach grid reaches (issue 13: 1.3 x the peak); a staged
+    rocket's is the whole staged flight's (stack and sustainer: every configuration's
+    table gets the same grid); ``config``: an .ork flight configuration (default: the
+    file's selected one); None (and a warning) when the file cannot be flown (e.g.
+    no motor resolvable)."""
     from ironbark_opt import load_setup, simulate
     try:
         return float(simulate(load_setup(rocket, config=config)).summary_values["max_mach"])

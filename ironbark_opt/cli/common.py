@@ -23,8 +23,9 @@ from ironbark_opt.errors import InputError, IronbarkError
 json_option = click.option("--json", "as_json", is_flag=True,
                            help="Print the result as one JSON object with unit-suffixed keys.")
 table_option = click.option(
-    "--table", "table", type=click.Path(dir_okay=False),
-    help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero.")
+    "--table", "table", type=click.Path(dir_okay=False), multiple=True,
+    help="Fly this aerodynamic table (from 'ironbark aero build') instead of the file's aero; "
+         "a multi-stage .ork: once per table its build wrote (stack, sustainer).")
 
 
 def _clean(obj):

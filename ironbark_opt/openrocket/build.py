@@ -186,9 +186,11 @@ def load_ork_geometry(path) -> Rocket:
     (what an aerodynamic table needs; numeric-only).
 
     Raises InputError for a damaged file or an unsupported component, and for
-    more than one stage (the table would mesh the stack)."""
+    more than one stage (each flight configuration has its own geometry:
+    :func:`ironbark_opt.openrocket.stage_tables.configurations`)."""
     doc = read_ork(path)
-    _single_stage(doc, "multi-stage rockets are", "build the sustainer's table",
+    _single_stage(doc, "one geometry for a multi-stage rocket is", "mesh the sustainer alone, or build "
+                  "one table per flight configuration with 'ironbark aero build'",
                   "cannot be meshed for a table yet (remove the boosters to build the core's)")
     return geometry(doc)
 

@@ -6,7 +6,8 @@ booster separating at ``burnout`` or ``upperignition`` + the same delay
 (OpenRocket's stage separation settings, per configuration).  Each stage has
 its own geometry, dry mass (OpenRocket's component rules), aerodynamics (the
 empirical pressure-drag estimate of its own geometry plus friction and base
-drag) and recovery.  Not yet: more than two stages, ignition/separation by
+drag, or the stack's and sustainer's panel tables from ``ironbark aero build``,
+:mod:`ironbark_opt.openrocket.stage_tables`) and recovery.  Not yet: more than two stages, ignition/separation by
 altitude or time, parallel boosters (refused with InputError).
 """
 from __future__ import annotations
@@ -97,9 +98,15 @@ def booster_file(doc: OrkDocument, cfg, spec_b, launch):
     return RocketFile(rocket, spec, aero, launch, recovery(sub, cfg.config_id), BallastSpec(), doc.path), x0
 
 
-def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
+def staged_setup(doc: OrkDocument, config: str | None = None, *, tables: dict | None = None,
+                 **setup_kwargs):
     """The :class:`StagedSetup` of a two-stage .ork configuration (numeric-only;
-    assembled by :func:`ironbark_opt.staged_vehicle.assemble_two_stage`)."""
+    assembled by :func:`ironbark_opt.staged_vehicle.assemble_two_stage`).
+
+    ``tables``: the stack's and the sustainer's AeroTable paths by configuration
+    (``{"stack": ..., "sustainer": ...}``, from ``ironbark aero build``;
+    :func:`ironbark_opt.openrocket.stage_tables.tables_by_configuration`) replacing
+    the empirical estimate of their geometry; the separated booster keeps its own."""
     from ironbark_opt.rocket.toml_io import RocketFile
     from ironbark_opt.staged_vehicle import assemble_two_stage
 
@@ -112,7 +119,7 @@ def staged_setup(doc: OrkDocument, config: str | None = None, **setup_kwargs):
         sub = _stage_doc(doc, stages)
         rocket = geometry(sub).with_mass_override(ormass.rocket_mass(sub.rocket.stages))
         chutes = tuple(r for r in recovery(_stage_doc(doc, (0,)), cfg.config_id)) if key == "sustainer" else ()
-        aero = AeroSpec(table=_aero_table_path(rocket, dataclasses.replace(
+        aero = AeroSpec(table=tables[key] if tables else _aero_table_path(rocket, dataclasses.replace(
             sub, path=doc.path.with_name(f"{doc.path.stem}-{key}{doc.path.suffix}"))))
         files[key] = RocketFile(rocket, spec, aero, launch, chutes, BallastSpec(), doc.path)
     booster, x0 = booster_file(doc, cfg, spec_b, launch)

@@ -262,6 +262,11 @@ def _attach_wake(net, edge_map, centroids, tol):
         if best is None or hits > best[0]:
             best = (hits, found, edge_pts, strips, row)
     hits, found, edge_pts, strips, row = best
+    # wake panels inside a closed surface (a wake routed through a fin behind it,
+    # panair.mesh._wake_through) are left out
+    interior = _meta_mask(net, "interior", *cr.shape[:2])
+    keep = interior.T if strips is not cr else interior
+    keep = ~keep
     valid = [f for f in found if f is not None]
     if hits == 0 or any(len(f) != 2 for f in valid):
         raise InputError(f"wake network '{net.name}': its upstream edge must lie on edges "
@@ -276,6 +281,7 @@ def _attach_wake(net, edge_map, centroids, tol):
         te = 0.5 * (edge_pts[s] + edge_pts[s + 1])
         h = [(centroids[p] - te) @ wn[0] for p in f]
         upper, lower = (f[0], f[1]) if h[0] >= h[1] else (f[1], f[0])
+        strip = strip[keep[s]]
         corners.append(strip)
         up.extend([upper] * len(strip))
         lo.extend([lower] * len(strip))

@@ -256,3 +256,29 @@ def test_haack_tip_is_meshed_subinclined(mach):
     cone = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
     np.testing.assert_array_equal(_axial_stations(cone, (), replace(MeshOptions(), tip_mach=(mach,))),
                                   _axial_stations(cone, (), MeshOptions()))
+
+
+def test_fins_in_line_a_wake_ends_on_the_fin_behind():
+    """Two 4-fin sets in line (a booster's behind a sustainer's): the body's root lines
+    open along both roots (a watertight junction: the enclosed volume is the body's
+    plus both fin sets'), and the forward fins' wakes stop at the aft fins' leading
+    edge (a wake through the thick aft fin put its control points on the sheet)."""
+    body = BodyGeometry(np.array([0.0, 2.84, 20.0]), np.array([0.0, 0.5, 0.5]))
+    fore = FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4)
+    aft = FinGeometry(4, 1.0, 1.0, 1.2, 0.0, 18.0, 0.08, roll=np.pi / 4)
+    opt = MeshOptions(n_theta=16, n_chord=6, n_span=3)
+    nets = mesh_rocket(RocketGeometry(body, (fore, aft)), symmetric=True, options=opt)
+    panels = build_panels(nets, symmetric=True)
+    one = build_panels(mesh_rocket(RocketGeometry(body, (fore,)), symmetric=True, options=opt), symmetric=True)
+    two = build_panels(mesh_rocket(RocketGeometry(body, (aft,)), symmetric=True, options=opt), symmetric=True)
+    bare = build_panels(mesh_rocket(RocketGeometry(body), symmetric=True, options=opt), symmetric=True)
+    fins_fore, fins_aft = _volume(one) - _volume(bare), _volume(two) - _volume(bare)
+    print(f"volume {_volume(panels):.5f} = body {_volume(bare):.5f} + fins {fins_fore:.5f} + {fins_aft:.5f}")
+    assert _volume(panels) == pytest.approx(_volume(bare) + fins_fore + fins_aft, rel=1e-9)
+    fore_wakes = [n for n in nets if n.kind == "wake" and "interior" in n.meta]
+    assert len(fore_wakes) == 2                                   # the half model's two forward fins
+    for w in fore_wakes:
+        assert np.allclose(w.points[:, 1, 0], 18.0)               # ends on the aft leading edge
+    # no wake panel between the aft fins' leading and trailing edges
+    xw = panels.wake_corners[:, :, 0]
+    assert not np.any((xw.max(axis=1) > 18.0 + 1e-9) & (xw.min(axis=1) < 19.0 - 1e-9))
