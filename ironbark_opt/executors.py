@@ -41,7 +41,6 @@ import pickle
 import threading
 import uuid
 from collections import OrderedDict
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
@@ -113,6 +112,10 @@ class LocalExecutor(Executor):
             for i, args in enumerate(tasks):
                 yield i, func(*args)
             return
+        # imported here: concurrent.futures.process (multiprocessing, socket, logging) is ~15 ms
+        # of start-up that the in-process path (the CLI's default) never uses
+        from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
         with ProcessPoolExecutor(max_workers=min(self.processes, len(tasks))) as pool:
             pending = {pool.submit(func, *args): i for i, args in enumerate(tasks)}
             while pending:

@@ -15,7 +15,14 @@
 """
 from ironbark_opt.analysis.distributions import DispersionSpec, load_spec, spec_from_dict
 from ironbark_opt.analysis.montecarlo import Dispersion, montecarlo
-from ironbark_opt.analysis.sensitivity import Sensitivities, sensitivities
 
 __all__ = ["DispersionSpec", "Dispersion", "Sensitivities", "load_spec", "montecarlo", "sensitivities",
            "spec_from_dict"]
+
+
+def __getattr__(name):
+    # the sensitivity module on first use (PEP 562): a Monte Carlo run does not need it
+    if name in ("Sensitivities", "sensitivities"):
+        from ironbark_opt.analysis import sensitivity
+        return getattr(sensitivity, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

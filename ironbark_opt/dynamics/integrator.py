@@ -171,6 +171,19 @@ def jit_mode(jit) -> bool | str:
     return bool(jit)
 
 
+#: C compiler flags of the compiled Functions.  ``-fno-semantic-interposition`` lets the
+#: compiler inline CasADi's runtime helpers (``casadi_sq``, ``casadi_low``,
+#: ``casadi_interpn``, ``casadi_copy``...), which a shared library otherwise calls
+#: through the PLT; ``-O3`` adds loop and inlining passes over the generated code.
+#: Neither changes floating-point semantics (no ``-ffast-math``): compiled flights are
+#: bit-identical to ``-O2``'s (1000 Calisto Monte Carlo samples, to landing) and take
+#: ~13 % less CPU (compiled Calisto ascent: 3.78e6 -> 3.09e6 instructions, callgrind);
+#: the compile itself takes ~1.5x longer (once per rocket, in the background).
+CFLAGS = ("-O3", "-fno-semantic-interposition")
+#: flags for a compiler that refuses :data:`CFLAGS`
+FALLBACK_CFLAGS = ("-O2",)
+
+
 def compiler_available() -> bool:
     """True when a C compiler (``$CC`` or gcc/cc) is on PATH."""
     return _compiler() is not None
@@ -247,9 +260,12 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
             _compile_detached(cc, src_path, lib)
             return func
         tmp_lib = Path(tmp) / lib.name
-        cmd = [cc, "-O2", "-shared", "-fPIC", str(src_path), "-o", str(tmp_lib), "-lm"]
-        proc = subprocess.run(cmd, capture_output=True, text=True)
-        if proc.returncode != 0:
+        for flags in (CFLAGS, FALLBACK_CFLAGS):
+            cmd = [cc, *flags, "-shared", "-fPIC", str(src_path), "-o", str(tmp_lib), "-lm"]
+            proc = subprocess.run(cmd, capture_output=True, text=True)
+            if proc.returncode == 0:
+                break
+        else:
             return func
         staged = cache / f".{lib.name}.{os.getpid()}.tmp"
         shutil.copyfile(tmp_lib, staged)
@@ -280,8 +296,9 @@ def _compile_detached(cc: str, src: Path, lib: Path) -> None:
     except OSError:
         return
     staged = lib.with_name(f".{lib.name}.{os.getpid()}.tmp")
-    script = (_LOWEST_GROUP_SH + '"$0" -O2 -shared -fPIC "$1" -o "$2" -lm && mv -f "$2" "$3"; '
-              'rm -f "$1" "$2"')
+    compile_ = '"$0" {} -shared -fPIC "$1" -o "$2" -lm'
+    script = (_LOWEST_GROUP_SH + f'({compile_.format(" ".join(CFLAGS))} || {compile_.format(" ".join(FALLBACK_CFLAGS))})'
+              ' && mv -f "$2" "$3"; rm -f "$1" "$2"')
     nice = shutil.which("nice")
     cmd = ([nice, "-n", "10"] if nice else []) + ["sh", "-c", script, cc, str(pending), str(staged), str(lib)]
     try:

@@ -179,3 +179,49 @@ def test_batch_columns_equal_single_runs(tmp_path, monkeypatch):
                     float(np.max(np.abs(batch["x_apogee"][:, j] - one["x_apogee"]))) / one["x_apogee"][2])
     print(f"apogees {batch['apogee_agl']} m: batch vs single runs {worst:.1e} relative (tolerance 1e-12)")
     assert worst < 1e-12
+
+
+@pytest.mark.skipif(not compiler_available(), reason="no C compiler on this machine")
+def test_compile_flags_keep_the_numbers_of_plain_o2(tmp_path, monkeypatch):
+    """integrator.CFLAGS (inlining, -O3) change no floating-point semantics: Calisto's
+    compiled coast step (atmosphere, Mach table, aerodynamics) gives -O2's numbers to the bit."""
+    from ironbark_opt.dynamics import integrator
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    step = FlightModel(setup)._library_twin().step["coast"]
+    rng = np.random.default_rng(7)
+    n = 200
+    x = np.vstack([rng.uniform(-50, 50, (2, n)), rng.uniform(0, 3000, (1, n)), rng.uniform(-20, 20, (2, n)),
+                   rng.uniform(50, 300, (1, n)), rng.normal(size=(4, n)), rng.normal(scale=0.5, size=(3, n))])
+    x[6:10] /= np.linalg.norm(x[6:10], axis=0)
+    t, dt = rng.uniform(4, 20, (1, n)), rng.uniform(0.01, 0.1, (1, n))
+    p = np.repeat(setup.nominal_parameters()[:, None], n, axis=1)
+    out = {}
+    for flags in (integrator.CFLAGS, integrator.FALLBACK_CFLAGS):
+        monkeypatch.setattr(integrator, "CFLAGS", flags)
+        lib = compile_function(step, tmp_path / "-".join(flags))
+        assert lib is not step
+        out[flags] = np.array(lib.map(n)(x, t, dt, p))
+    a, b = out.values()
+    assert np.all(np.isfinite(a))
+    assert np.array_equal(a, b)
+
+
+@pytest.mark.skipif(not compiler_available(), reason="no C compiler on this machine")
+def test_a_compiler_refusing_the_flags_compiles_with_o2(tmp_path, monkeypatch):
+    import shutil
+
+    import casadi as ca
+
+    from ironbark_opt.dynamics.integrator import CFLAGS, _compiler
+    cc = tmp_path / "cc"
+    log = tmp_path / "calls"
+    cc.write_text(f'#!/bin/sh\necho "$*" >> {log}\ncase "$*" in *{CFLAGS[-1]}*) exit 1;; esac\n'
+                  f'exec {shutil.which(_compiler())} "$@"\n')
+    cc.chmod(0o755)
+    monkeypatch.setenv("CC", str(cc))
+    x = ca.SX.sym("x")
+    f = ca.Function("cube_fallback", [x], [x * x * x])
+    lib = compile_function(f, tmp_path / "jit")
+    assert lib is not f and float(lib(3.0)) == 27.0
+    calls = log.read_text().splitlines()
+    assert len(calls) == 2 and CFLAGS[-1] in calls[0] and calls[1].startswith("-O2 ")
