@@ -11,7 +11,9 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
   store).  Printed; bounded at the measured state so a regression fails (session 6:
   FT2 +2.5 % vs OpenRocket's +2.9 %; APEX +5.1 % vs OpenRocket's +1.0 %, not closer: its
   boost runs through Mach 0.95-1.1 where our transonic rise starts at the fins' critical
-  Mach 0.88 and OpenRocket's nose-cone rise from about Mach 0.7).
+  Mach 0.88 and OpenRocket's nose-cone rise from about Mach 0.7; session 9: APEX +5.9 %,
+  its Mach 1.2-2 rows now solved by linear theory (pointed fin tips' closure slivers,
+  panair.solver.supersonic._pointed_tip_closure) instead of local inclination).
 
 Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
 FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).
