@@ -6,13 +6,20 @@ rail phase integrated once per secant iterate).  :func:`ascent_functions`
 builds the same sequence as one Function of ``p`` (compiled with the model's
 other libraries), so a run is one call plus NumPy bookkeeping:
 
-- **rail exit**: the rail phase over ``[0, min(0.5 s, burnout)]`` brackets the
-  exit; the linear interpolation of its samples is the first iterate, a
-  Newton step with the along-rail speed the second, then secant steps (the
-  same residual and tolerance as ``FlightModel._rail_exit``: ``|s - L| <
-  1e-10 m``).  Each further iteration is a conditional call (``Function.if_else``,
-  a CasADi switch): once the residual is below the tolerance the remaining
-  ones cost nothing, so the rail phase is flown only as often as needed;
+- **rail exit**: a bracketing pass of the rail phase over ``[0, min(0.5 s, burnout)]``
+  on a coarse grid (``n_rail // 2`` steps: it only brackets and guesses) finds the
+  exit between two samples; the cubic Hermite interpolant of the travel and the
+  along-rail speed there gives the first iterate, a Newton step with the speed the
+  second, then secant steps whose slope is the chord corrected by half the change of
+  the along-rail speed between the two iterates (exact for a travel quadratic in
+  time, so the rocket's acceleration costs no iteration).  The residual and
+  tolerance are ``FlightModel._rail_exit``'s (the rail phase on ``n_rail`` equal
+  steps over ``[0, t_r]``, ``|s - L| < 1e-10 m``): only the iterates differ, so the
+  root differs within that tolerance.  Calisto's 1000 Monte Carlo samples: ~3.9
+  full rail passes per flight (+ the half-cost bracket) instead of ~4.8 (+ a full
+  one).  Each further iteration is a conditional call (``Function.if_else``, a
+  CasADi switch): once the residual is below the tolerance the remaining ones
+  cost nothing, so the rail phase is flown only as often as needed;
 - **boost** on the model's own boost trajectory (its grid, its air-start segments);
 - **coast** on the model's coast grid over the horizon ``t_b + v_z,b / g0 + 2 s``,
   in chunks of :data:`COAST_CHUNK` steps; a chunk starting at ``v_z <= 0`` is
@@ -37,7 +44,7 @@ import numpy as np
 from ironbark_opt.dynamics.buffered import Buffered
 from ironbark_opt.dynamics.constants import G0, RAIL_TOL_M
 from ironbark_opt.dynamics.frames import rotation_matrix
-from ironbark_opt.dynamics.integrator import grid_fractions
+from ironbark_opt.dynamics.integrator import grid_fractions, phase_trajectory
 
 #: rail passes after the bracketing one (conditional: only the needed ones run)
 RAIL_ITERATIONS = 8
@@ -45,6 +52,11 @@ RAIL_ITERATIONS = 8
 COAST_CHUNK = 10
 #: rows of the ``ev`` output
 EV = ("t_rail", "g_rail", "g_bracket", "t_burnout", "vz_burnout", "t_end", "k", "found", "t_k", "h", "rail_passes")
+
+
+def _along_rail(e, x):
+    """Speed [m/s] along the rail direction ``e`` (launch frame) of the state ``x``."""
+    return ca.dot(e, rotation_matrix(x[6:10]) @ x[3:6])
 
 
 def _rail_pass(model) -> ca.Function:
@@ -55,23 +67,38 @@ def _rail_pass(model) -> ca.Function:
     X = model.trajectory["rail"](x0, 0, t, p)
     x = X[:, -1]
     g = ca.dot(e, x[0:3]) - d
-    v = ca.dot(e, rotation_matrix(x[6:10]) @ x[3:6])
+    v = _along_rail(e, x)
     return ca.Function("rail_pass", [t, x0, e, d, p], [g, v, X])
 
 
 def _secant_iteration(rail: ca.Function, nr: int) -> ca.Function:
-    """One secant step as a switch: ``(go, t_a, g_a, X_a, t_b, x0, e, d, p, n) ->
-    (t_a, g_a, X_a, t_b, n)``; with ``go`` false the state passes through unflown."""
-    t_a, g_a, t_b, n = ca.MX.sym("t_a"), ca.MX.sym("g_a"), ca.MX.sym("t_b"), ca.MX.sym("n")
+    """One secant step as a switch: ``(go, t_a, g_a, v_a, X_a, t_b, x0, e, d, p, n) ->
+    (t_a, g_a, v_a, X_a, t_b, n)``; with ``go`` false the state passes through unflown.
+    The slope is the chord plus half the change of the along-rail speed ``v``
+    between the iterates: the residual's slope at ``t_b`` if the travel is quadratic
+    in time (what is left is the grid's own dependence on ``t_r``)."""
+    t_a, g_a, v_a, t_b, n = (ca.MX.sym(s) for s in ("t_a", "g_a", "v_a", "t_b", "n"))
     X_a = ca.MX.sym("X_a", 13, nr)
     x0, e, d, p = ca.MX.sym("x0", 13), ca.MX.sym("e", 3), ca.MX.sym("d"), ca.MX.sym("p", rail.size1_in(4))
-    g_b, _, X_b = rail(t_b, x0, e, d, p)
-    same = g_b == g_a
-    t_new = ca.if_else(same, t_b, t_b - g_b * (t_b - t_a) / ca.if_else(same, 1.0, g_b - g_a))
-    ins = [t_a, g_a, X_a, t_b, x0, e, d, p, n]
-    fly = ca.Function("secant_fly", ins, [t_b, g_b, X_b, t_new, n + 1])
-    keep = ca.Function("secant_keep", ins, [t_a, g_a, X_a, t_b, n])
+    g_b, v_b, X_b = rail(t_b, x0, e, d, p)
+    same = t_b == t_a
+    slope = ca.if_else(same, v_b, (g_b - g_a) / ca.if_else(same, 1.0, t_b - t_a) + 0.5 * (v_b - v_a))
+    t_new = ca.if_else(slope == 0, t_b, t_b - g_b / ca.if_else(slope == 0, 1.0, slope))
+    ins = [t_a, g_a, v_a, X_a, t_b, x0, e, d, p, n]
+    fly = ca.Function("secant_fly", ins, [t_b, g_b, v_b, X_b, t_new, n + 1])
+    keep = ca.Function("secant_keep", ins, [t_a, g_a, v_a, X_a, t_b, n])
     return ca.Function.if_else("secant", fly, keep)
+
+
+def _hermite_root(s0, s1, v0, v1, u):
+    """Root ``u`` in [0, 1] of the cubic Hermite interpolant of values ``s0, s1`` and
+    slopes ``v0, v1`` (per unit ``u``) on [0, 1], by Newton from ``u`` (clamped)."""
+    for _ in range(4):
+        h = ((2 * u**3 - 3 * u**2 + 1) * s0 + (u**3 - 2 * u**2 + u) * v0
+             + (3 * u**2 - 2 * u**3) * s1 + (u**3 - u**2) * v1)
+        dh = (6 * u**2 - 6 * u) * (s0 - s1) + (3 * u**2 - 4 * u + 1) * v0 + (3 * u**2 - 2 * u) * v1
+        u = ca.fmin(1.0, ca.fmax(0.0, u - h / ca.if_else(dh == 0, 1.0, dh)))
+    return u
 
 
 def _coast_chunk(model, n: int, name: str) -> ca.Function:
@@ -109,22 +136,27 @@ def ascent_functions(model) -> tuple[ca.Function, ca.Function]:
     burn = model.burn_time(p)
     rail = _rail_pass(model)
 
-    # rail exit: bracket, interpolated guess, Newton step with the speed, secant steps
+    # rail exit: coarse bracket, Hermite guess, Newton step with the speed, secant steps
+    nb = max(1, nr // 2)
     hi = ca.fmin(0.5, burn)
-    g_hi, _, X_hi = rail(hi, x0, e, d, p)
-    trav = ca.horzcat(-d, e.T @ X_hi[0:3, :] - d)                      # 1 x (nr + 1)
+    X_hi = phase_trajectory(model.step["rail"], nb, "traj_rail_bracket")(x0, 0, hi, p)
+    X_hi = ca.horzcat(x0, X_hi)                                          # 13 x (nb + 1)
+    trav = e.T @ X_hi[0:3, :] - d
+    g_hi = trav[-1]
     first = _first(trav > 0)                                          # first sample past the exit
-    s1 = ca.mtimes(trav, first.T)
-    s0 = ca.mtimes(trav[:, :-1], first[:, 1:].T)
-    k = ca.mtimes(ca.DM(np.arange(nr + 1)).T, first.T)
-    dt = hi / nr
-    t_a = (k - 1) * dt + dt * (-s0) / ca.if_else(s1 == s0, 1.0, s1 - s0)
+    prev = ca.horzcat(first[:, 1:], 0)                                # the sample before it
+    s1, s0 = ca.mtimes(trav, first.T), ca.mtimes(trav, prev.T)
+    dt = hi / nb
+    v1, v0 = _along_rail(e, ca.mtimes(X_hi, first.T)) * dt, _along_rail(e, ca.mtimes(X_hi, prev.T)) * dt
+    k = ca.mtimes(ca.DM(np.arange(nb + 1)).T, first.T)
+    u = _hermite_root(s0, s1, v0, v1, -s0 / ca.if_else(s1 == s0, 1.0, s1 - s0))
+    t_a = (k - 1 + u) * dt
     g_a, v_a, X_a = rail(t_a, x0, e, d, p)
     t_b = t_a - g_a / ca.if_else(v_a == 0, 1.0, v_a)
     step = _secant_iteration(rail, nr)
     n = ca.MX(2)
     for _ in range(RAIL_ITERATIONS):
-        t_a, g_a, X_a, t_b, n = step(ca.fabs(g_a) >= RAIL_TOL_M, t_a, g_a, X_a, t_b, x0, e, d, p, n)
+        t_a, g_a, v_a, X_a, t_b, n = step(ca.fabs(g_a) >= RAIL_TOL_M, t_a, g_a, v_a, X_a, t_b, x0, e, d, p, n)
     t_r, x_r = t_a, X_a[:, -1]
 
     # boost on the model's own trajectory (grid and air-start segments)
