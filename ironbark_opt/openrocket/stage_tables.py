@@ -78,7 +78,9 @@ def configurations(doc) -> list[StageConfiguration]:
 def tables_by_configuration(doc, tables, known=None) -> dict[str, Path]:
     """Each table of ``tables`` (paths of ``aero build`` tables, any order) keyed
     by the configuration of ``doc`` (an OrkDocument, or with ``known`` the
-    configurations of another file and ``doc`` its path) its metadata names.
+    configurations of another file and ``doc`` its path) its metadata names.  A
+    configuration without a table given takes the one ``aero build`` wrote beside a
+    given one (``STEM-stack.csv`` -> ``STEM-sustainer.csv``), checked the same way.
 
     Raises InputError for a table built for no configuration of this design
     (a single-stage table, another rocket's stages), two tables of one
@@ -91,7 +93,8 @@ def tables_by_configuration(doc, tables, known=None) -> dict[str, Path]:
     known = {c.key: c for c in known}
     doc = Path(doc)
     found: dict[str, Path] = {}
-    for path in tables:
+
+    def check(path) -> str:
         meta = AeroTable.load(path).metadata
         key, names = meta.get(CONFIG_KEY), meta.get(STAGES_KEY)
         if key is None:
@@ -113,6 +116,19 @@ def tables_by_configuration(doc, tables, known=None) -> dict[str, Path]:
             raise InputError(f"two tables of configuration '{key}': {found[key]} and {path}", source=path,
                              field="table")
         found[key] = Path(path)
+        return key
+
+    given = [(Path(p), check(p)) for p in tables]
+    # a configuration not given: the table 'aero build' wrote for it beside a given one
+    # (STEM-stack.csv -> STEM-sustainer.csv), as a parallel-booster stack's table finds its own
+    for path, key in given:
+        stem = path.name[:-len(path.suffix)] if path.suffix else path.name
+        if not stem.endswith(f"-{key}"):
+            continue
+        for other in known:
+            sibling = path.with_name(f"{stem[:-len(key)]}{other}{path.suffix}")
+            if other not in found and sibling.is_file():
+                check(sibling)
     missing = [k for k in ("stack", "sustainer") if k in known and k not in found]
     if missing:
         raise InputError(f"no table for configuration {' and '.join(repr(k) for k in missing)}: a staged "

@@ -106,8 +106,18 @@ def test_two_stage_build_and_flight(tmp_path):
           f"{stored:.1f} m ({100 * err:+.1f} %; bound 10 %); peak Mach {flown['max_mach']:.3f}")
     assert abs(err) < 0.10 and flown["max_mach"] < 0.6                 # inside the tables' grid
 
-    # each configuration needs its own table; a table of another rocket is refused
-    res = CliRunner().invoke(main, fly + ["--table", str(out["tables"][1]["table_csv"])])
+    # one table given: the other configuration's is the one 'aero build' wrote beside it
+    for given in out["tables"]:
+        res = CliRunner().invoke(main, fly + ["--table", str(given["table_csv"])])
+        assert res.exit_code == 0, res.output
+        assert json.loads(res.stdout[res.stdout.index("{"):])["apogee_agl_m"] == flown["apogee_agl_m"]
+    # each configuration needs its own table: the sustainer's alone (none beside it) is refused
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    for suffix in (".csv", ".json"):
+        (alone / f"two-sustainer{suffix}").write_bytes(
+            Path(out["tables"][1]["table_csv"]).with_suffix(suffix).read_bytes())
+    res = CliRunner().invoke(main, fly + ["--table", str(alone / "two-sustainer.csv")])
     assert res.exit_code == 2 and "'stack'" in res.output and "Traceback" not in res.output
     res = CliRunner().invoke(main, fly + ["--table", str(out["tables"][0]["table_csv"])] * 2)
     assert res.exit_code == 2 and "two tables of configuration 'stack'" in res.output
