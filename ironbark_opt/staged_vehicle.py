@@ -93,31 +93,32 @@ def stage_configurations_from_toml(rf):
     """The stack and the sustainer of a rocket TOML with one ``[[stage]]`` table
     (:func:`staged_setup_from_toml`'s geometry; StageConfiguration objects)."""
     from ironbark_opt.openrocket.stage_tables import StageConfiguration
-    from ironbark_opt.rocket.toml_io import load_rocket_toml
 
-    if len(rf.stages) != 1:
-        raise InputError(f"{len(rf.stages)} [[stage]] tables: two-stage rockets (one [[stage]]) are "
-                         "supported so far", source=rf.source, field="stage")
-    st = rf.stages[0]
-    brf = load_rocket_toml(st.file)
+    st, brf = _lower_stage(rf)
     upper = rf.rocket.name
     stack, _ = stacked_rocket(rf.rocket, brf.rocket, upper)
     return [StageConfiguration("stack", (upper, st.name or brf.rocket.name), stack),
             StageConfiguration("sustainer", (upper,), rf.rocket)]
 
 
-def staged_setup_from_toml(rf, **setup_kwargs):
-    """The StagedSetup of a rocket TOML with a ``[[stage]]`` table (the file itself
-    describes the sustainer; the stage's own rocket file the booster, in its own
-    frame; see docs/rocket-toml.md)."""
+def _lower_stage(rf):
+    """``(StageSpec, RocketFile)`` of the one ``[[stage]]`` of a rocket TOML (InputError
+    for more than one: two-stage rockets only so far)."""
     from ironbark_opt.rocket.toml_io import load_rocket_toml
-    from ironbark_opt.vehicle import load_motor_for
 
     if len(rf.stages) != 1:
         raise InputError(f"{len(rf.stages)} [[stage]] tables: two-stage rockets (one [[stage]]) are "
                          "supported so far", source=rf.source, field="stage")
-    st = rf.stages[0]
-    brf = load_rocket_toml(st.file)
+    return rf.stages[0], load_rocket_toml(rf.stages[0].file)
+
+
+def staged_setup_from_toml(rf, **setup_kwargs):
+    """The StagedSetup of a rocket TOML with a ``[[stage]]`` table (the file itself
+    describes the sustainer; the stage's own rocket file the booster, in its own
+    frame; see docs/rocket-toml.md)."""
+    from ironbark_opt.vehicle import load_motor_for
+
+    st, brf = _lower_stage(rf)
     if brf.stages:
         raise InputError("a [[stage]]'s rocket file cannot have stages of its own", source=st.file,
                          field="stage")

@@ -278,9 +278,6 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
         if len(doc.rocket.stages) > 1 or doc.rocket.pods:
             from ironbark_opt.openrocket.parallel import parallel_setup
             from ironbark_opt.openrocket.staging import staged_setup
-            if table is not None and doc.rocket.pods:
-                raise InputError("--table applies to single-stage rockets (each stage of a staged rocket "
-                                 "flies its own aerodynamics)", source=path, field="table")
             if table is not None:            # serial stages: one table per flight configuration
                 from ironbark_opt.openrocket.stage_tables import tables_by_configuration
                 kwargs = {**kwargs, "tables": tables_by_configuration(doc, tables)}

@@ -233,6 +233,11 @@ class RocketGeometry:
     fins: tuple = ()
     name: str = "rocket"
 
+    def with_fins_rolled(self, offset: float) -> "RocketGeometry":
+        """The same rocket with every fin set rolled ``offset`` [rad] further (from +z
+        toward +y)."""
+        return replace(self, fins=tuple(replace(f, roll=(f.roll + offset) % (2 * np.pi)) for f in self.fins))
+
 
 SUPERSONIC_LE_WEDGE = 3.0
 """Length of the wedge standing in for a blunt fin leading edge in supersonic

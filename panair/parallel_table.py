@@ -117,12 +117,8 @@ def roll_offsets(geom) -> list[float]:
     # a mirror line of a layout passes through a fin or halfway between two fins
     candidates = [0.0] + sorted({round((-0.5 * (a + b) + k * np.pi / 2) % (2 * np.pi), 12)
                                  for a in angles for b in angles for k in range(2)})
-
-    def rolled(d):
-        import dataclasses
-        return dataclasses.replace(geom, fins=tuple(dataclasses.replace(f, roll=(f.roll + d) % (2 * np.pi))
-                                                    for f in geom.fins))
-    best = max(candidates, key=lambda d: (is_symmetric(rolled(d)) + is_symmetric(rolled(d + np.pi / 2)), -d))
+    best = max(candidates, key=lambda d: (is_symmetric(geom.with_fins_rolled(d))
+                                          + is_symmetric(geom.with_fins_rolled(d + np.pi / 2)), -d))
     return [best, best + np.pi / 2]
 
 

@@ -77,9 +77,7 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
     alpha_deg = np.asarray(DEFAULT_ALPHA_DEG if alpha_deg is None else alpha_deg, float)
     geom = from_rocket(rocket)
     if fin_roll_offset:
-        import dataclasses
-        geom = dataclasses.replace(geom, fins=tuple(dataclasses.replace(f, roll=(f.roll + fin_roll_offset) % (2 * np.pi))
-                                                    for f in geom.fins))
+        geom = geom.with_fins_rolled(fin_roll_offset)
     sref = rocket.reference_area()
     lref = 2.0 * rocket.reference_radius()
     friction = FrictionDrag(friction_components(rocket, aero_spec.surface_roughness), sref,

@@ -120,8 +120,7 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     if mach_v is None:
         mach_v = default_mach_grid(peak)
     if out is None:
-        slug = re.sub(r"[^A-Za-z0-9_.-]+", "_", parts[0][1].name).strip("_") or "rocket"
-        out = Path("tables") / slug
+        out = default_out(parts[0][1].name)
     built = []
     for conf, rk in parts:
         stem = Path(out) if conf is None else Path(f"{out}-{conf.key}")
@@ -148,6 +147,11 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     fly = " ".join(f"--table {shlex.quote(r['table_csv'])}" for r in results)
     emit({"tables": results, **common}, as_json,
          "\n".join(lines) + f"\nfly them: ironbark simulate {shlex.quote(str(rocket))} {fly}")
+
+
+def default_out(name: str) -> Path:
+    """The table stem ``aero build`` writes without ``--out``: tables/<rocket name>."""
+    return Path("tables") / (re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("_") or "rocket")
 
 
 def _save(table, rk, stem, ckpt, label: str) -> tuple[dict, str]:

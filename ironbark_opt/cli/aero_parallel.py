@@ -9,7 +9,6 @@ frame, flown from separation to the ground).  Not a command module: called by
 """
 from __future__ import annotations
 
-import re
 import shutil
 import time
 import warnings
@@ -44,7 +43,7 @@ def peak_mach(doc, rocket) -> float | None:
 def build_parallel(doc, rocket, mach, alpha_deg, out, *, workers: int, refine: float, use_panair: bool,
                    progress: bool, resume: bool, as_json: bool):
     """Build, save and report the three tables (see the module docstring)."""
-    from ironbark_opt.cli.aero import method_warnings
+    from ironbark_opt.cli.aero import default_out, method_warnings
     from ironbark_opt.openrocket.parallel import single_booster_set
     from panair.parallel_table import INTERFERENCE_NOTE, parallel_tables
     from panair.rocket_table import default_mach_grid
@@ -53,9 +52,7 @@ def build_parallel(doc, rocket, mach, alpha_deg, out, *, workers: int, refine: f
     peak = peak_mach(doc, rocket) if mach is None else None
     if mach is None:
         mach = default_mach_grid(peak)
-    if out is None:
-        out = Path("tables") / (re.sub(r"[^A-Za-z0-9_.-]+", "_", doc.name).strip("_") or "rocket")
-    out = Path(out)
+    out = default_out(doc.name) if out is None else Path(out)
     out = out.with_suffix("") if out.suffix.lower() in (".csv", ".json") else out
     stems = {"stack": out, "core": Path(f"{out}-core"), "booster": Path(f"{out}-booster")}
     names = {f"{k}_table": f"{stems[k].name}.json" for k in ("core", "booster")}
