@@ -93,7 +93,7 @@ class GridMixin:
         s = p[params.index("burn_time_scale")]
         x, blocks = x0, []
         for i, (a, b, k) in enumerate(self._boost_segments(n)):
-            traj = phase_trajectory(self.step["boost"], k, f"traj_boost_{i}")
+            traj = phase_trajectory(self.step["boost"], k, f"traj_boost_{i}", rhs=self.rhs["boost"])
             X = traj(x, t0 if a is None else a * s, t1 if b is None else b * s, p)
             blocks.append(X)
             x = X[:, -1]
@@ -113,7 +113,9 @@ class GridMixin:
         if phase == "boost" and getattr(self.setup.motor, "events", ()):
             self.trajectory[phase] = self._segmented_boost(n)
         else:
-            self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading)
+            # the rail's roll damping is zero (no rotation): its steps stay in the plain form
+            rhs = None if phase == "rail" else self.rhs[phase]
+            self.trajectory[phase] = phase_trajectory(self.step[phase], n, f"traj_{phase}", grading, rhs=rhs)
         self._run[phase] = self.trajectory[phase]      # compiled (if asked) once the grid is fixed
         for key in [k for k in self.__dict__.get("_map_cache", {}) if k[0].split(":")[0] == phase]:
             del self._map_cache[key]
