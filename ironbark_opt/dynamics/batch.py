@@ -5,12 +5,34 @@ rail-exit secant and the apogee refinement vectorised.
 """
 from __future__ import annotations
 
+import os
+
 import casadi as ca
 import numpy as np
 
 from ironbark_opt.dynamics import ejection
 from ironbark_opt.dynamics.constants import G0, RAIL_TOL_M
 from ironbark_opt.errors import InputError, SolverError
+
+
+def map_threads(n: int) -> int:
+    """Threads of a batch of ``n`` samples mapped by CasADi (``Function.map(n, "thread", k)``):
+    twice the processors this process may run on, with at least 8 samples a thread
+    (and 2 threads, as before, for fewer than 16 samples).
+
+    CasADi's thread map gives each thread an equal share of the samples, so the batch
+    ends with its slowest thread: with one thread a core, a core that another job holds
+    (a shared or busy machine) leaves the batch waiting for its share while the other
+    core idles.  Twice as many threads as cores lets the scheduler move the remaining
+    shares to the free core.  Each sample is its own evaluation, so the results do not
+    depend on the count.  Measured on the 2-core development machine under load (250
+    compiled Calisto samples in one process, 10 rounds): median wall 0.29 s with 2
+    threads, 0.21 s with 4, 0.20 s with 8; the same CPU time (0.08 s)."""
+    try:
+        cores = len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        cores = os.cpu_count() or 1
+    return max(min(2, int(n)), min(2 * cores, int(n) // 8))
 
 
 class BatchMixin:
@@ -42,11 +64,11 @@ class BatchMixin:
         cache = self.__dict__.setdefault("_map_cache", {})
         if (key, n) not in cache:
             if key.endswith(":batch"):
-                cache[(key, n)] = self._batch_function(key.split(":")[0]).map(n, "thread", 2)
+                cache[(key, n)] = self._batch_function(key.split(":")[0]).map(n, "thread", map_threads(n))
                 return cache[(key, n)]
             base = {"launch": self._launch, "apogee": self._apogee_run, "vz": self.vz_l,
                     "step": self.step["coast"]}.get(key) or self._run[key]
-            cache[(key, n)] = base.map(n, "thread", 2) if key in self._run else base.map(n)
+            cache[(key, n)] = base.map(n, "thread", map_threads(n)) if key in self._run else base.map(n)
         return cache[(key, n)]
 
     def _run_batch_fused(self, P: np.ndarray, descent: bool) -> dict:
@@ -63,7 +85,7 @@ class BatchMixin:
             base = self._lib.get("ascent_batch")
             if base is None:
                 base = self._ascent_vm()[1] if self._one_library else self._compiled(self._ascent_vm()[1])
-            cache[("ascent_batch", n)] = base.map(n, "thread", 2)
+            cache[("ascent_batch", n)] = base.map(n, "thread", map_threads(n))
         ev, x_r, x_a = (np.array(v) for v in cache[("ascent_batch", n)](P))
         r = dict(zip(EV, ev))
         t_r, burn, t_apo = r["t_rail"], r["t_burnout"], r["t_k"] + r["h"]

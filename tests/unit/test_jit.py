@@ -1,4 +1,5 @@
 """C compilation of the trajectory Functions: same numbers, cached on disk."""
+import os
 from pathlib import Path
 
 import numpy as np
@@ -225,3 +226,26 @@ def test_a_compiler_refusing_the_flags_compiles_with_o2(tmp_path, monkeypatch):
     assert lib is not f and float(lib(3.0)) == 27.0
     calls = log.read_text().splitlines()
     assert len(calls) == 2 and CFLAGS[-1] in calls[0] and calls[1].startswith("-O2 ")
+
+
+def test_batch_numbers_do_not_depend_on_the_thread_count(tmp_path, monkeypatch):
+    """batch.map_threads picks the thread map's thread count from the processors; each
+    sample is its own evaluation, so 1 thread and 4 threads give the same numbers to the
+    bit (24 dispersed Calisto samples through the ascent Function)."""
+    from ironbark_opt.analysis.distributions import load_spec
+    from ironbark_opt.dynamics import batch as batch_mod
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    setup = load_setup(ROOT / "examples/calisto/calisto.toml")
+    spec = load_spec(ROOT / "examples/calisto/dispersions.toml")
+    P = spec.sample(24, setup.nominal_parameters(), np.random.default_rng(7))
+    real = batch_mod.map_threads
+    assert 2 <= real(250) <= 2 * (os.cpu_count() or 1)
+    assert real(1) == 1 and real(10) == 2
+    out = {}
+    for threads in (1, 4):
+        monkeypatch.setattr(batch_mod, "map_threads", lambda n, k=threads: k)
+        model = FlightModel(setup)
+        out[threads] = model.run_batch(P)
+        assert ("ascent_batch", 24) in model._map_cache
+    for key in ("apogee_agl", "t_apogee", "t_rail", "x_apogee"):
+        assert np.array_equal(out[1][key], out[4][key])
