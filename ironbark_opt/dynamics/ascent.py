@@ -44,7 +44,7 @@ import numpy as np
 from ironbark_opt.dynamics.buffered import Buffered
 from ironbark_opt.dynamics.constants import G0, RAIL_TOL_M
 from ironbark_opt.dynamics.frames import rotation_matrix
-from ironbark_opt.dynamics.integrator import carried_trajectory, carries_damping, grid_fractions, phase_trajectory
+from ironbark_opt.dynamics.integrator import carried_trajectory, grid_fractions, phase_trajectory
 
 #: rail passes after the bracketing one (conditional: only the needed ones run)
 RAIL_ITERATIONS = 8
@@ -103,21 +103,12 @@ def _hermite_root(s0, s1, v0, v1, u):
 
 def _coast_chunk(model, n: int, name: str) -> ca.Function:
     """``(x0, starts, lengths, t0, span, p) -> X``: ``n`` coast steps on the given
-    grid fractions, the same expression per step as ``phase_trajectory`` (the
+    grid fractions, the same expression per step as ``phase_trajectory`` (in the
     carried form of :func:`~ironbark_opt.dynamics.integrator.carried_trajectory`)."""
-    x0, t0m, spm = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("span")
-    st, ln, pm = ca.MX.sym("starts", 1, n), ca.MX.sym("lengths", 1, n), ca.MX.sym("p", model.n_p)
-    rhs = model.rhs["coast"]
-    if carries_damping(rhs):
-        X = carried_trajectory(rhs, name, x0, st, ln, t0m, spm, pm)
-    else:
-        step = model.step["coast"]
-        x, f0, df = ca.SX.sym("x", 13), ca.SX.sym("f0"), ca.SX.sym("df")
-        t0, span, ps = ca.SX.sym("t0"), ca.SX.sym("span"), ca.SX.sym("p", model.n_p)
-        body = ca.Function(f"{name}_body", [x, f0, df, t0, span, ps], [step(x, t0 + span * f0, span * df, ps)])
-        acc = body.mapaccum(f"{name}_acc", n)
-        X = acc(x0, st, ln, ca.repmat(t0m, 1, n), ca.repmat(spm, 1, n), ca.repmat(pm, 1, n))
-    ins = [x0, st, ln, t0m, spm, pm]
+    x0, t0, span = ca.MX.sym("x0", 13), ca.MX.sym("t0"), ca.MX.sym("span")
+    st, ln, p = ca.MX.sym("starts", 1, n), ca.MX.sym("lengths", 1, n), ca.MX.sym("p", model.n_p)
+    X = carried_trajectory(model.rhs["coast"], name, x0, st, ln, t0, span, p)
+    ins = [x0, st, ln, t0, span, p]
     fly = ca.Function(f"{name}_fly", ins, [X])
     skip = ca.Function(f"{name}_skip", ins, [ca.repmat(x0, 1, n)])
     return ca.Function.if_else(name, fly, skip)

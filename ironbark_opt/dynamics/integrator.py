@@ -133,7 +133,8 @@ def carried_steps(rhs: ca.Function, name: str) -> tuple[ca.Function, ca.Function
 def carried_trajectory(rhs: ca.Function, name: str, x0, starts, lengths, t0, span, p):
     """States (nx x n, MX) after each of the n steps of :func:`carried_steps` from ``x0``
     on the grid fractions ``starts``, ``lengths`` (1 x n, DM or MX) of ``[t0, t0 + span]``:
-    the same numbers as n :func:`rk4_step` steps."""
+    the same numbers as n :func:`rk4_step` steps (an SX ``rhs``; without ``c_roll`` the
+    damping is the identity and the body the plain step)."""
     n = starts.shape[1]
     body, close = carried_steps(rhs, name)
     acc = body.mapaccum(f"{name}_acc", n)
