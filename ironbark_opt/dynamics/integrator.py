@@ -283,6 +283,19 @@ _PENDING_S = 600.0
 #: The shell sets it (the group is the session's, so the Python or compiler it then
 #: execs keeps it): once, before anything else of the child runs.
 _LOWEST_GROUP_SH = "(echo 19 > /proc/self/autogroup) 2>/dev/null; "
+#: A detached compile starts only once the process that asked for it has exited (at
+#: most this long after [s]): the library is for the next run, and a compile running
+#: beside the run that asked (on the other core, or on a busy machine's shared cores)
+#: would slow it down whatever its priority.  A long-running process (a notebook, a
+#: study) still gets its library after this wait.
+AFTER_PARENT_MAX_S = 60.0
+
+
+def _after_parent_sh() -> str:
+    """Shell prefix that waits until this process has exited (or ``AFTER_PARENT_MAX_S``)."""
+    ticks = int(AFTER_PARENT_MAX_S * 10)
+    return (f"i=0; while [ $i -lt {ticks} ] && kill -0 {os.getpid()} 2>/dev/null; "
+            "do sleep 0.1; i=$((i+1)); done; ")
 
 
 def _compile_detached(cc: str, src: Path, lib: Path) -> None:
@@ -297,7 +310,7 @@ def _compile_detached(cc: str, src: Path, lib: Path) -> None:
         return
     staged = lib.with_name(f".{lib.name}.{os.getpid()}.tmp")
     compile_ = '"$0" {} -shared -fPIC "$1" -o "$2" -lm'
-    script = (_LOWEST_GROUP_SH + f'({compile_.format(" ".join(CFLAGS))} || {compile_.format(" ".join(FALLBACK_CFLAGS))})'
+    script = (_LOWEST_GROUP_SH + _after_parent_sh() + f'({compile_.format(" ".join(CFLAGS))} || {compile_.format(" ".join(FALLBACK_CFLAGS))})'
               ' && mv -f "$2" "$3"; rm -f "$1" "$2"')
     nice = shutil.which("nice")
     cmd = ([nice, "-n", "10"] if nice else []) + ["sh", "-c", script, cc, str(pending), str(staged), str(lib)]
@@ -342,7 +355,7 @@ def run_detached(target: str, args: list[str], cleanup: list[Path]) -> None:
     nice = shutil.which("nice")
     # the shell moves the session's group to nice 19 before Python starts (its start-up,
     # ~40 ms, would otherwise share the CPU equally with the process that asked)
-    cmd = ([nice, "-n", "10"] if nice else []) + ["sh", "-c", _LOWEST_GROUP_SH + 'exec "$0" "$@"',
+    cmd = ([nice, "-n", "10"] if nice else []) + ["sh", "-c", _LOWEST_GROUP_SH + _after_parent_sh() + 'exec "$0" "$@"',
                                                    sys.executable, "-c", script, target, str(len(cleanup)),
                                                    *map(str, cleanup), *args]
     try:
