@@ -80,24 +80,28 @@ class BodyGeometry:
         """Radius [m] at ``x`` [m] (the aft value at a step)."""
         return np.interp(x, self.x, self.r)
 
-    def separated_boattail(self) -> tuple[float, float, float, float] | None:
-        """``(x_fore, x_aft, r_fore, r_aft)`` [m] of the contracting run that ends at the
-        base when Niskanen's boattail criterion (OpenRocket technical documentation,
-        2013, eq. 3.88: gamma = length / (fore diameter - aft diameter) < 1) calls it
-        fully separated, else None: such a boattail carries base pressure on its
-        annulus (:func:`ironbark_opt.aero.empirical_drag.boattail_separation_fraction`,
-        the same criterion the subsonic table uses)."""
+    def separated_transitions(self) -> list[tuple[float, float, float, float]]:
+        """``(x_fore, x_aft, r_fore, r_aft)`` [m] of each contracting run of the
+        profile (a boattail, a mid-body reducer) that Niskanen's criterion (OpenRocket
+        technical documentation, 2013, eq. 3.88: gamma = length / (fore diameter -
+        aft diameter) < 1) calls fully separated: such a transition carries base
+        pressure on its annulus (:func:`ironbark_opt.aero.empirical_drag.
+        boattail_separation_fraction`, the criterion the subsonic table uses)."""
         from ironbark_opt.aero.empirical_drag import boattail_separation_fraction
         x, r = self.x, self.r
-        j = len(x) - 1
-        while j > 0 and x[j - 1] < x[j] and r[j - 1] > r[j]:
-            j -= 1
-        if j == len(x) - 1:
-            return None
-        run = SimpleNamespace(fore_radius=float(r[j]), aft_radius=float(r[-1]), length=float(x[-1] - x[j]))
-        if boattail_separation_fraction(run) < 1.0:
-            return None
-        return float(x[j]), float(x[-1]), float(r[j]), float(r[-1])
+        out, i, n = [], 0, len(x)
+        while i < n - 1:
+            if not (x[i + 1] > x[i] and r[i + 1] < r[i]):
+                i += 1
+                continue
+            j = i
+            while j < n - 1 and x[j + 1] > x[j] and r[j + 1] < r[j]:
+                j += 1
+            run = SimpleNamespace(fore_radius=float(r[i]), aft_radius=float(r[j]), length=float(x[j] - x[i]))
+            if boattail_separation_fraction(run) >= 1.0:
+                out.append((float(x[i]), float(x[j]), float(r[i]), float(r[j])))
+            i = j
+        return out
 
 
 @dataclass(frozen=True)
@@ -290,11 +294,11 @@ class MeshOptions:
     (:func:`panair.solver.panels.mirror_map`).  Supersonic meshes too since the
     fin sides are decided with a tolerance (:func:`panair.solver.supersonic._fin_sides`;
     with the sign of rounding noise, Bella Lui's Mach 1.2 failed with this seam);
-    separated_boattail : a boattail that Niskanen's eq. 3.88 calls fully separated
-    (:meth:`BodyGeometry.separated_boattail`) is left out of the solve, its drag
-    the base pressure on its annulus (:meth:`for_mach` sets it for supersonic
-    Mach numbers; subsonic tables take the zero-lift drag of such a boattail
-    from the same criterion, :mod:`panair.transonic`).
+    separated_transitions : a boattail or reducer that Niskanen's eq. 3.88 calls
+    fully separated (:meth:`BodyGeometry.separated_transitions`) is left out of the
+    solve, its drag the base pressure on its annulus (:meth:`for_mach` sets it for
+    supersonic Mach numbers; subsonic tables take the zero-lift drag of such a
+    transition from the same criterion, :mod:`panair.transonic`).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -317,7 +321,7 @@ class MeshOptions:
     blunt_le_wedge: float = 0.0
     tip_mach: tuple = ()
     mirror_seam: bool = True
-    separated_boattail: bool = False
+    separated_transitions: bool = False
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
@@ -326,12 +330,12 @@ class MeshOptions:
         """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
         if mach <= 1.0:
             return self
-        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_boattail:
+        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions:
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
                        supersonic_span_factor=1.0,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
-                       separated_boattail=True)
+                       separated_transitions=True)
 
 
 def _chord_stations(n, clustering):
@@ -527,13 +531,15 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         no_force[lo:hi, :] |= inside[None, :]
     pts = np.stack([X, R * np.sin(T), -R * np.cos(T)], axis=-1)
     meta = {"no_force": no_force}
-    sep = body.separated_boattail() if opt.separated_boattail else None
-    if sep is not None:
-        # a fully separated boattail (supersonic meshes): its panels are left out of the
-        # solve and carry base pressure instead (panair.sweep adds it on the annulus);
-        # attached linear theory there is wrong and, steeper than the Mach cone or
-        # expanding past vacuum, has no solution at all
-        sep_mask = np.broadcast_to(((xc > sep[0]) & (xc < sep[1]))[None, :], no_force.shape) & ~no_force
+    if opt.separated_transitions:
+        # fully separated boattails and reducers (supersonic meshes): their panels are
+        # left out of the solve and carry base pressure instead (panair.sweep adds it on
+        # the annulus); attached linear theory there is wrong and, steeper than the
+        # Mach cone or expanding past vacuum, has no solution at all
+        on = np.zeros(len(xc), bool)
+        for x0, x1, _, _ in body.separated_transitions():
+            on |= (xc > x0) & (xc < x1)
+        sep_mask = np.broadcast_to(on[None, :], no_force.shape) & ~no_force
         if sep_mask.any():
             meta["separated"] = np.array(sep_mask)
     nets = []

@@ -35,9 +35,14 @@ def _rocket(body):
 
 
 def test_criterion_is_eq_3_88():
-    assert _body(0.033, 0.027).separated_boattail() == pytest.approx((2.3, 2.333, D / 2, 0.027))  # 36 deg
-    assert _body(0.05, 0.0326).separated_boattail() is None          # 20 deg: gamma 1.37
-    assert _body(0.0, 0.0).separated_boattail() is None              # no boattail
+    assert _body(0.033, 0.027).separated_transitions() == [pytest.approx((2.3, 2.333, D / 2, 0.027))]  # 36 deg
+    assert _body(0.05, 0.0326).separated_transitions() == []          # 20 deg: gamma 1.37
+    assert _body(0.0, 0.0).separated_transitions() == []              # no boattail
+    # a 30 deg reducer mid-body (6 in -> 4 in), and a boattail behind it (gamma 0.69)
+    reducer = BodyGeometry(np.array([0.0, 0.4, 0.9, 0.945, 2.3, 2.333]),
+                           np.array([0.0, 0.0762, 0.0762, D / 2, D / 2, 0.027]))
+    assert reducer.separated_transitions() == [pytest.approx((0.9, 0.945, 0.0762, D / 2)),
+                                               pytest.approx((2.3, 2.333, D / 2, 0.027))]
 
 
 def test_only_supersonic_meshes_leave_it_out():
@@ -62,7 +67,7 @@ def test_separated_boattail_is_a_base_at_its_shoulder():
                         workers=1, progress=False, alpha_extend_deg=())
         out[name] = t
     bt, cut = out["boattail"], out["cut"]
-    assert bt.metadata["supersonic_separated_boattail_x_m"] == pytest.approx([2.3, 2.333])
+    assert bt.metadata["supersonic_separated_transitions_x_m"] == [pytest.approx([2.3, 2.333])]
     assert bt.metadata["mach_local_inclination"] == []          # linear theory solved every Mach
     for i, m in enumerate(mach):
         if m < 1.2:
