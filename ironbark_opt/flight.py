@@ -16,7 +16,7 @@ from ironbark_opt import params as params_mod
 from ironbark_opt.dynamics.integrator import jit_mode
 from ironbark_opt.dynamics.model import FlightModel, Steps
 from ironbark_opt.dynamics.rhs import OUTPUT_NAMES
-from ironbark_opt.errors import OutOfRangeWarning
+from ironbark_opt.errors import OutOfRangeWarning, SolverError
 
 _MODELS: dict[int, tuple] = {}
 
@@ -157,6 +157,23 @@ def _table(model: FlightModel, run: dict) -> dict[str, np.ndarray]:
     return {k: (np.asarray(v) if np.ndim(v) else np.full(n, v)) for k, v in data.items()}
 
 
+#: Mach number no flight of this tool's rockets reaches: above it, or with non-finite
+#: states or an apogee below the pad, the fixed-step integration has diverged
+MACH_DIVERGED = 30.0
+
+
+def _check_converged(model: FlightModel, run: dict, df: dict, flying) -> None:
+    """Refuse a diverged integration (exit 3) instead of printing its numbers."""
+    mach = np.asarray(df["mach"])[flying]
+    alt = np.asarray(df["altitude_agl_m"])[flying]
+    apogee = float(run["x_apogee"][2])
+    if not (np.all(np.isfinite(mach)) and np.all(np.isfinite(alt)) and np.isfinite(apogee)) \
+            or mach.max() > MACH_DIVERGED or apogee < 0.0:
+        raise SolverError(f"{model.setup.name}: the flight's integration diverged (max Mach {mach.max():.3g}, "
+                          f"apogee {apogee:.6g} m AGL): the fixed-step RK4 grid could not follow this "
+                          "flight; no result was written. Please report it with the rocket file")
+
+
 def _summary(model: FlightModel, run: dict, df: dict) -> dict:
     elev = model.setup.site_elevation
     x_a, x_r = run["x_apogee"], run["x_rail"]
@@ -165,6 +182,7 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
     i_vmax = int(df["speed_mps"].argmax())
     burn = int(np.flatnonzero(time <= run["t_burnout"] + 1e-12)[-1])
     flying = np.isin(df["phase"], ["rail", "boost", "coast", "stack_coast", "sustainer_boost"])
+    _check_converged(model, run, df, flying)
     s = {
         "apogee_agl_m": float(x_a[2]),
         "apogee_asl_m": float(x_a[2] + elev),

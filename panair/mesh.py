@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -78,6 +79,29 @@ class BodyGeometry:
     def radius_at(self, x):
         """Radius [m] at ``x`` [m] (the aft value at a step)."""
         return np.interp(x, self.x, self.r)
+
+    def separated_transitions(self) -> list[tuple[float, float, float, float]]:
+        """``(x_fore, x_aft, r_fore, r_aft)`` [m] of each contracting run of the
+        profile (a boattail, a mid-body reducer) that Niskanen's criterion (OpenRocket
+        technical documentation, 2013, eq. 3.88: gamma = length / (fore diameter -
+        aft diameter) < 1) calls fully separated: such a transition carries base
+        pressure on its annulus (:func:`ironbark_opt.aero.empirical_drag.
+        boattail_separation_fraction`, the criterion the subsonic table uses)."""
+        from ironbark_opt.aero.empirical_drag import boattail_separation_fraction
+        x, r = self.x, self.r
+        out, i, n = [], 0, len(x)
+        while i < n - 1:
+            if not (x[i + 1] > x[i] and r[i + 1] < r[i]):
+                i += 1
+                continue
+            j = i
+            while j < n - 1 and x[j + 1] > x[j] and r[j + 1] < r[j]:
+                j += 1
+            run = SimpleNamespace(fore_radius=float(r[i]), aft_radius=float(r[j]), length=float(x[j] - x[i]))
+            if boattail_separation_fraction(run) >= 1.0:
+                out.append((float(x[i]), float(x[j]), float(r[i]), float(r[j])))
+            i = j
+        return out
 
 
 @dataclass(frozen=True)
@@ -269,7 +293,12 @@ class MeshOptions:
     then meshed as one, which both solvers solve on half its panels
     (:func:`panair.solver.panels.mirror_map`).  Supersonic meshes too since the
     fin sides are decided with a tolerance (:func:`panair.solver.supersonic._fin_sides`;
-    with the sign of rounding noise, Bella Lui's Mach 1.2 failed with this seam).
+    with the sign of rounding noise, Bella Lui's Mach 1.2 failed with this seam);
+    separated_transitions : a boattail or reducer that Niskanen's eq. 3.88 calls
+    fully separated (:meth:`BodyGeometry.separated_transitions`) is left out of the
+    solve, its drag the base pressure on its annulus (:meth:`for_mach` sets it for
+    supersonic Mach numbers; subsonic tables take the zero-lift drag of such a
+    transition from the same criterion, :mod:`panair.transonic`).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -292,6 +321,7 @@ class MeshOptions:
     blunt_le_wedge: float = 0.0
     tip_mach: tuple = ()
     mirror_seam: bool = True
+    separated_transitions: bool = False
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
@@ -300,11 +330,12 @@ class MeshOptions:
         """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
         if mach <= 1.0:
             return self
-        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0:
+        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions:
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
                        supersonic_span_factor=1.0,
-                       blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE)
+                       blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
+                       separated_transitions=True)
 
 
 def _chord_stations(n, clustering):
@@ -499,8 +530,20 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         inside = (xc > f.x_root) & (xc < f.x_root + f.root_chord)
         no_force[lo:hi, :] |= inside[None, :]
     pts = np.stack([X, R * np.sin(T), -R * np.cos(T)], axis=-1)
+    meta = {"no_force": no_force}
+    if opt.separated_transitions:
+        # fully separated boattails and reducers (supersonic meshes): their panels are
+        # left out of the solve and carry base pressure instead (panair.sweep adds it on
+        # the annulus); attached linear theory there is wrong and, steeper than the
+        # Mach cone or expanding past vacuum, has no solution at all
+        on = np.zeros(len(xc), bool)
+        for x0, x1, _, _ in body.separated_transitions():
+            on |= (xc > x0) & (xc < x1)
+        sep_mask = np.broadcast_to(on[None, :], no_force.shape) & ~no_force
+        if sep_mask.any():
+            meta["separated"] = np.array(sep_mask)
     nets = []
-    nets.append(Network("body", pts, "surface", {"no_force": no_force}))
+    nets.append(Network("body", pts, "surface", meta))
     if rs[0] > 1e-9 * rs.max():
         rr = np.linspace(rs[0], 0.0, 3)
         cap = np.stack([np.full((len(theta), 3), xs[0]),

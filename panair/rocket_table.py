@@ -33,10 +33,12 @@ DEFAULT_ALPHA_DEG = (0.0, 2.0, 4.0, 6.0, 8.0, 12.0, 16.0, 20.0)
 
 def default_mach_grid(peak_mach: float | None = None) -> np.ndarray:
     """:data:`DEFAULT_MACH`, extended past 2 in steps of 0.5 to cover 1.3 x
-    ``peak_mach`` [-] when given."""
+    ``peak_mach`` [-] when given, up to the supersonic solver's largest Mach number
+    (a flight beyond it is flown on the table's last row, with the clamp warning)."""
+    from .solver import MACH_SUPERSONIC_MAX
     grid = list(DEFAULT_MACH)
     if peak_mach is not None and math.isfinite(peak_mach):
-        while grid[-1] < 1.3 * peak_mach:
+        while grid[-1] < 1.3 * peak_mach and grid[-1] + 0.5 <= MACH_SUPERSONIC_MAX:
             grid.append(grid[-1] + 0.5)
     return np.array(grid)
 

@@ -123,6 +123,22 @@ def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.nda
     return ca
 
 
+def separated_transitions_ca(geometry: RocketGeometry, mach, sref: float, base_drag=None) -> np.ndarray:
+    """Zero-lift axial force [-] of the fully separated boattails and reducers in a
+    supersonic solution (0 without any): the base pressure on their annuli, Niskanen
+    2013 eq. 3.88 (gamma < 1) as the subsonic table and OpenRocket apply it at every
+    Mach number, with the table's base-pressure model
+    (:func:`ironbark_opt.aero.base_drag.cd_base`).  Their panels are left out of the
+    supersonic solve (:attr:`panair.mesh.MeshOptions.separated_transitions`)."""
+    from ironbark_opt.aero.base_drag import cd_base
+    m = np.asarray(mach, float)
+    annuli = sum(math.pi * (r0 ** 2 - r1 ** 2) for _, _, r0, r1 in geometry.body.separated_transitions())
+    if not annuli:
+        return np.zeros_like(m)
+    model = (base_drag.model, base_drag.afterbody_calibers) if base_drag is not None else ()
+    return np.asarray(cd_base(m, *model), float) * annuli / sref
+
+
 def _jorgensen_potential(alpha):
     """Potential-flow normal-force shape sin(2 alpha) cos(alpha / 2) [-]
     (Jorgensen, NASA TR R-474, 1977, eq. 1, first term)."""
@@ -512,6 +528,11 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                                   pressure_rule=pressure_rule, executor=executor,
                                   checkpoint_dir=checkpoint_dir)
     mach = np.asarray(mach, float)
+    # ---- fully separated boattails' and reducers' base pressure, at the supersonic Mach numbers the
+    # built-in solver solved without it (an external PANAIR integrates its own panels)
+    builtin_sup = np.isin(mach, info["mach_solved_builtin"]) & (mach >= MACH_SUPERSONIC_MIN)
+    coeffs["CA"] = coeffs["CA"] + np.where(builtin_sup, separated_transitions_ca(geometry, mach, sref, base_drag),
+                                           0.0)[:, None]
     # ---- zero-lift pressure drag: subsonic separated flow, critical Mach, transonic rise
     ca_lin = coeffs["CA"]
     d_ca = ca_lin - ca_lin[:, :1]                       # angle-of-attack increments (panel)
@@ -532,7 +553,9 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                                 xref=xref, symmetric=symmetric, options=options, workers=1,
                                 progress=False, use_panair=use_panair,
                                 pressure_rule=pressure_rule, checkpoint_dir=checkpoint_dir)
-        m_sup, p_sup = np.array([m_anchor]), np.array([float(c1["CA"][0, 0])])
+        p_anchor = float(c1["CA"][0, 0]) + (0.0 if use_panair else
+                                             float(separated_transitions_ca(geometry, m_anchor, sref, base_drag)))
+        m_sup, p_sup = np.array([m_anchor]), np.array([p_anchor])
         anchor_solved = [m_anchor]
     # each fin set rises from its own critical Mach number on its own exposed planform
     lock_sets = [(m_i, int(f.count) * f.span * float(np.mean(f.chord_at(np.linspace(0, 1, 65)))) / sref)
@@ -596,6 +619,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                                         "(Niskanen 2013 eq. 3.81/3.88/3.89) below the critical "
                                         "Mach number, monotone rise to the sonic (area-rule) "
                                         "value, supersonic panel solutions above",
+            "supersonic_separated_transitions_x_m": [[x0, x1] for x0, x1, _, _ in
+                                                     geometry.body.separated_transitions()],
             "mach_critical": m_cr, "mach_critical_body": m_cr_body,
             "mach_critical_fins": m_cr_fins, "mach_sonic_anchor_solved": anchor_solved,
             "friction_reynolds": ("sea-level ISA unit Reynolds number at each Mach (in CA)"

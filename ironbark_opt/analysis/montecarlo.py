@@ -23,7 +23,7 @@ import numpy as np
 
 from ironbark_opt import params
 from ironbark_opt.analysis.distributions import DispersionSpec, load_spec
-from ironbark_opt.errors import InputError
+from ironbark_opt.errors import InputError, SolverError
 
 PERCENTILES = (5, 50, 95)
 _UNIT_SUFFIX = {"kg": "_kg", "m": "_m", "m/s": "_mps", "K": "_K", "-": "", "rad": "_deg"}
@@ -285,6 +285,12 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
         out = fly_samples(setup, P, descent=descent, chunk=int(chunk), executor=executor, output=output, jit=jit,
                           model=model, on_chunk=bar.update)
     x_a = out["x_apogee"]
+    apo = np.asarray(out["apogee_agl"], float)
+    diverged = np.flatnonzero(~np.isfinite(apo) | (apo < 0.0))
+    if diverged.size:                      # as simulate refuses one (flight._check_converged)
+        raise SolverError(f"{setup.name}: the integration of {diverged.size} of {int(samples)} Monte Carlo "
+                          f"samples diverged (sample {int(diverged[0])}: apogee {apo[diverged[0]]:.6g} m AGL); "
+                          "no statistics were written. Please report it with the rocket and spec files")
     data = {"sample": np.arange(int(samples))}
     for name in spec.parameters:
         data[column_name(name)] = column_values(name, P[params.index(name)])

@@ -134,7 +134,8 @@ class GridMixin:
             out = f(xs, ts, ps)
             xdot = out[0]
             if "c_roll" in f.name_out():          # advanced exactly by the integrator
-                xdot = xdot - ca.vertcat(ca.SX.zeros(10), out[2] * xs[10], ca.SX.zeros(2))
+                forcing = out[3] if "f_roll" in f.name_out() else 0
+                xdot = xdot - ca.vertcat(ca.SX.zeros(10), out[2] * xs[10] + forcing, ca.SX.zeros(2))
             cache[f.name()] = ca.Function(f"jac_{f.name()}", [xs, ts, ps], [ca.jacobian(xdot, xs)])
         jac = cache[f.name()]
         x = np.atleast_2d(np.asarray(x, dtype=float).T).T

@@ -159,8 +159,9 @@ def build(setup, phase: str, cd_area: float = 0.0, n_p: int = params.SIZE) -> ca
     casadi.Function
         Inputs ``x`` (13) [mixed SI], ``t`` [s], ``p`` (params.SIZE);
         outputs ``xdot`` (13, the complete derivative), ``y``
-        (len(OUTPUT_NAMES)) and ``c_roll`` [1/s], the roll-damping part of
-        d(dw_x/dt)/dw_x, which the integrator treats exactly; SX-built.
+        (len(OUTPUT_NAMES)), ``c_roll`` [1/s], the roll-damping part of
+        d(dw_x/dt)/dw_x, and ``f_roll`` [rad/s^2], the roll forcing (fin cant) part
+        of dw_x/dt, which the integrator treats exactly together; SX-built.
     """
     if phase not in PHASES:
         raise ValueError(f"phase must be one of {PHASES}, got {phase!r}")
@@ -238,6 +239,9 @@ def build(setup, phase: str, cd_area: float = 0.0, n_p: int = params.SIZE) -> ca
         # large fins the stiffest mode of the whole flight (time constant of a
         # few ms).  The integrator advances it exactly (see rk4_step).
         c_roll = ca.solve(inertia, ca.vertcat(damp * clp, 0, 0))[0]
+        # ... and the roll forcing (fin cant) that balances it: advanced with it, so the
+        # roll rate relaxes toward its equilibrium -f_roll / c_roll exactly (rk4_step)
+        f_roll = ca.solve(inertia, m_roll)[0]
         vdot = f_b / m - ca.cross(w_b, v_b) + g_b
         xdot = ca.vertcat(s["t_l"] @ v_b, vdot, quaternion_rate(s["q"], w_b), wdot)
 
@@ -250,6 +254,7 @@ def build(setup, phase: str, cd_area: float = 0.0, n_p: int = params.SIZE) -> ca
     )
     # Common-subexpression elimination: the aero pieces share many terms.
     if phase in ("rail", "descent"):
-        c_roll = 0 * t                          # no rotation in these phases
-    xdot, y, c_roll = ca.cse(xdot), ca.cse(y), ca.cse(c_roll)
-    return ca.Function(f"rhs_{phase}", [x, t, p], [xdot, y, c_roll], ["x", "t", "p"], ["xdot", "y", "c_roll"])
+        c_roll = f_roll = 0 * t                 # no rotation in these phases
+    xdot, y, c_roll, f_roll = ca.cse(xdot), ca.cse(y), ca.cse(c_roll), ca.cse(f_roll)
+    return ca.Function(f"rhs_{phase}", [x, t, p], [xdot, y, c_roll, f_roll], ["x", "t", "p"],
+                       ["xdot", "y", "c_roll", "f_roll"])

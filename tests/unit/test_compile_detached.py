@@ -13,6 +13,8 @@ def test_detached_compile_with_jacobian(tmp_path, monkeypatch):
     if not compiler_available():
         pytest.skip("no C compiler")
     monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    # the child waits for this process to exit, at most AFTER_PARENT_MAX_S: here, not at all
+    monkeypatch.setattr("ironbark_opt.dynamics.integrator.AFTER_PARENT_MAX_S", 0.0)
     x, p = ca.MX.sym("x", 2), ca.MX.sym("p", 3)
     f = ca.Function("tiny_nlp", [x, p], [ca.sumsqr(x - p[:2]), ca.vertcat(x[0] * p[2], ca.sin(x[1]))],
                     ["x", "p"], ["f", "g"])

@@ -73,6 +73,9 @@ def test_default_mach_grid_reaches_1_3_times_the_peak():
         g = default_mach_grid(peak)
         assert g[-1] >= 1.3 * peak and g[-2] < 1.3 * peak
         np.testing.assert_array_equal(g[:len(DEFAULT_MACH)], DEFAULT_MACH)
+    # never past the supersonic solver's range (a diverged or hypersonic estimate)
+    from panair.solver import MACH_SUPERSONIC_MAX
+    assert default_mach_grid(1830.0)[-1] == MACH_SUPERSONIC_MAX
 
 
 def test_peak_mach_estimate_is_the_files_own_flight():

@@ -182,3 +182,22 @@ def test_bad_arguments(setup, model):
     with pytest.raises(InputError, match="DispersionSpec"):
         montecarlo(setup, {"parameters": {}}, 2, model=model)
     assert isinstance(montecarlo(setup, spec, 1, executor="local", progress=False, model=model), Dispersion)
+
+
+def test_diverged_samples_are_refused(setup, model, monkeypatch):
+    """A sample whose integration diverged (non-finite or below-pad apogee, as the
+    canted-fin roll split once produced) stops the study with a SolverError naming it,
+    never into the statistics."""
+    import ironbark_opt.executors as ex
+    from ironbark_opt.errors import SolverError
+    real = ex.fly_samples
+
+    def broken(*args, **kwargs):
+        out = dict(real(*args, **kwargs))
+        apo = np.array(out["apogee_agl"], float)
+        apo[1] = -69197.3
+        out["apogee_agl"] = apo
+        return out
+    monkeypatch.setattr(ex, "fly_samples", broken)
+    with pytest.raises(SolverError, match=r"1 of 3 Monte Carlo samples diverged \(sample 1"):
+        montecarlo(setup, spec_from_dict(SMALL), 3, progress=False, model=model)
