@@ -8,8 +8,10 @@ subsonic solver, the compressibility axis is the body x axis), with the
 influence of each panel limited to its downstream Mach cone
 (:mod:`.supersonic_influence`).  In supersonic flow a source distribution
 represents the flow outside a closed body of revolution without doublets;
-the wake and the base are downstream of everything that is integrated, so
-they are left out (the linear theory is causal).  The mass flux through a
+the base and its wake are downstream of everything that is integrated, so
+they are left out (the linear theory is causal).  A fin's trailing-edge wake is
+not, where the body continues behind the fin: it is solved as a two-faced source
+sheet with the wake conditions (:mod:`.supersonic_wake`).  The mass flux through a
 panel is the difference of the closed-form potential between a point on
 its wetted side and a point one step further along the conormal
 (-n_X, n_Y, n_Z) (a directional derivative); the tangential velocity
