@@ -100,6 +100,11 @@ def wake_sheets(panels, keep, fins) -> WakeSheets | None:
         sub = np.linspace(0.0, 1.0, CELLS_PER_BODY_PANEL + 1)[1:-1]
         mids = stations[:-1, None] + np.diff(stations)[:, None] * sub[None, :]
         stations = np.unique(np.concatenate([stations, mids.ravel()]))
+    # the body's radius at its stations (largest corner radius), for the guard below
+    bc = panels.corners[body_like].reshape(-1, 3)
+    bx = np.round(bc[:, 0], 12)
+    r_st = np.array([np.linalg.norm(bc[bx == x][:, 1:], axis=1).max() for x in np.unique(bx)])
+    x_st = np.unique(bx)
     _, cen_all, nrm_all, _ = planar_corners(panels.corners)
     planes = [_fin_plane(cen_all[fin_of_panel == f]) for f in fins]
     x_range = [(float(panels.corners[fin_of_panel == f][..., 0].min()),
@@ -141,6 +146,10 @@ def wake_sheets(panels, keep, fins) -> WakeSheets | None:
                 nxt = te.copy()
                 nxt[:, 0] = xn
                 q = np.array([prev[0], prev[1], nxt[1], nxt[0]])
+                # a body growing behind the fin would put the sheet inside it: stop there
+                r_in = float(np.linalg.norm(q[:, 1:], axis=1).min())
+                if r_in < float(np.interp(xn, x_st, r_st)) - 1e-6 * size:
+                    break
                 if np.linalg.norm(np.cross(q[2] - q[0], q[1] - q[3])) > tol * size:
                     cells.append(q)
                     fin_idx.append(k)

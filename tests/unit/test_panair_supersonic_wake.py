@@ -107,3 +107,26 @@ def test_mirror_fold_with_wake_sheets_is_the_full_solve():
         assert s.wake_cells > 0 and (s._fold is not None) == mirror
         out.append([(r.CN, r.Cm) for r in s.solve(np.radians([0.0, 2.0]))])
     np.testing.assert_allclose(out[1], out[0], rtol=1e-8, atol=1e-10)
+
+
+def test_sheet_stops_where_the_body_grows_past_it():
+    """A flare behind the fins (radius 0.5 -> 0.6 cal from 8 to 9 cal) would put the
+    sheet's root inside the body: its innermost strip ends where the body reaches it
+    and no cell lies inside the body; on a cylinder it runs to the body's end."""
+    from panair.solver.supersonic_wake import wake_sheets
+    fins = (FinGeometry(2, 1.0, 0.6, 0.6, 0.4, X_TE - 1.0, 0.04, roll=np.pi / 2),)
+    ends = {}
+    for name, x, r in (("cylinder", [0.0, 2.84, 10.0], [0.0, 0.5, 0.5]),
+                       ("flare", [0.0, 2.84, 8.0, 9.0, 10.0], [0.0, 0.5, 0.5, 0.6, 0.6])):
+        p = build_panels(mesh_rocket(RocketGeometry(BodyGeometry(np.array(x), np.array(r)), fins),
+                                     symmetric=True, options=_opt()), symmetric=True)
+        lifting = ~p.wake_at_base
+        sh = wake_sheets(p, p.integrate.copy(), np.unique(p.network[p.wake_upper[lifting]]))
+        c = sh.corners[:sh.n_cells]
+        r_in = np.linalg.norm(c[..., 1:], axis=2).min(axis=1)
+        inner = r_in < r_in.min() + 1e-9
+        ends[name] = float(c[inner][..., 0].max())
+        assert np.all(r_in >= np.interp(c[..., 0].max(axis=1), x, r) - 1e-9)
+    print(f"\ninnermost strip of the sheet ends at: {ends}")
+    assert ends["cylinder"] == pytest.approx(10.0)
+    assert X_TE < ends["flare"] <= 8.5
