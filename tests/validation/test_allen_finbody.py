@@ -31,6 +31,11 @@ the tunnel's CN-alpha drops 26 % from Mach 2 to 2.3); session 9's match there
 resolved: candidates are linear theory's nose (Mach 1.6: 2.84 /rad on the 3-cal
 ogive, slender-body theory 2) and, for spans of 0.5 cal, the body boundary layer at
 the fin roots (outside a potential solver); Mach 1.2 is transonic for linear theory.
+Noticed, not investigated (session 10): a flat delta wing (pointed tip) on a thin body,
+our solver vs exact linear theory (Stewart: CL-alpha = 2 pi cot L / E(k)), wing panels
+on the wing's area: leading edge 63.4 deg (subsonic) -36 / -30 % at Mach 1.6 / 2.0,
+45 deg (supersonic) -15 / -12 %: the fin-side shadow model (no communication around a
+subsonic leading edge) and pointed tips deserve a check of their own.
 What was ruled out in session 9, with numbers:
 the panel mesh (twice finer: CN-alpha fin 1 +0.6 %, fin 5 -1.4 %), the solver (its potential
 CN-alpha is within -9 ... +5 % of the independent slender-body interference
