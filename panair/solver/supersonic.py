@@ -73,8 +73,8 @@ from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gra
 from .subsonic import PanelResult, _free_stream, _refuse_sideslip
 from .nose_correction import TangentCone
 from .supersonic_influence import panel_frames, source_potential_pair
-from .supersonic_wake import (cut_wake_neighbours, sheet_geometry, sheet_sides, sheet_twins,
-                              wake_rows, wake_sheets)
+from .supersonic_wake import (cut_wake_neighbours, fin_plane as _fin_plane, sheet_geometry,
+                              sheet_sides, sheet_twins, wake_rows, wake_sheets)
 
 __all__ = ["SupersonicSolver", "MACH_SUPERSONIC_MIN", "MACH_SUPERSONIC_MAX", "G1_MIN"]
 
@@ -248,13 +248,6 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
         src_fin[side != 0] = k
         src_side[side != 0] = side[side != 0]
     return recv, src_fin, src_side
-
-
-def _fin_plane(fin_centroids):
-    """A fin's mid-plane: (point, unit normal) of the least-squares plane through its
-    panel centroids (the smallest singular direction)."""
-    c0 = fin_centroids.mean(axis=0)
-    return c0, np.linalg.svd(fin_centroids - c0)[2][2]
 
 
 def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
@@ -445,7 +438,7 @@ class SupersonicSolver:
             self._nb = cut_wake_neighbours(self._nb, np.c_[x_phys, cen[:, 1:]], sides[0],
                                            sheets.x_root_te, sides[1] >= 0)
             if self._fold is not None:
-                ext = sheet_twins(self._fold_twins, cen, cen_w, nrm_w,
+                ext = sheet_twins(self._fold_twins, cen_w, nrm_w,
                                   1e-9 * float(np.ptp(cen, axis=0).max()))
                 self._fold = MirrorFold(ext) if ext is not None else None
             flat, cen, nrm = (np.concatenate([a, b]) for a, b in

@@ -35,8 +35,8 @@ import numpy as np
 
 from .influence import planar_corners
 
-__all__ = ["WakeSheets", "wake_sheets", "cut_wake_neighbours", "sheet_twins", "sheet_geometry",
-           "sheet_sides", "wake_rows"]
+__all__ = ["WakeSheets", "fin_plane", "wake_sheets", "cut_wake_neighbours", "sheet_twins",
+           "sheet_geometry", "sheet_sides", "wake_rows"]
 
 #: Cells per body panel length behind the trailing edge (measured on Allen's fin 10 at
 #: Mach 1.6: 1, 2 and 4 give the configuration's CN-alpha within 0.07 % and its
@@ -74,7 +74,9 @@ class WakeSheets:
         return len(self.corners) // 2
 
 
-def _fin_plane(fin_centroids):
+def fin_plane(fin_centroids):
+    """A fin's mid-plane: (point, unit normal) of the least-squares plane through its
+    panel centroids (the smallest singular direction)."""
     c0 = fin_centroids.mean(axis=0)
     return c0, np.linalg.svd(fin_centroids - c0)[2][2]
 
@@ -106,7 +108,7 @@ def wake_sheets(panels, keep, fins) -> WakeSheets | None:
     r_st = np.array([np.linalg.norm(bc[bx == x][:, 1:], axis=1).max() for x in np.unique(bx)])
     x_st = np.unique(bx)
     _, cen_all, nrm_all, _ = planar_corners(panels.corners)
-    planes = [_fin_plane(cen_all[fin_of_panel == f]) for f in fins]
+    planes = [fin_plane(cen_all[fin_of_panel == f]) for f in fins]
     x_range = [(float(panels.corners[fin_of_panel == f][..., 0].min()),
                 float(panels.corners[fin_of_panel == f][..., 0].max())) for f in fins]
     lifting = np.nonzero(~panels.wake_at_base)[0]
@@ -192,7 +194,7 @@ def cut_wake_neighbours(nb, cen, sides_recv, fins_x_te, is_fin):
     return out
 
 
-def sheet_twins(p_panels, cen_panels, cen_sheet, nrm_sheet, tol) -> np.ndarray | None:
+def sheet_twins(p_panels, cen_sheet, nrm_sheet, tol) -> np.ndarray | None:
     """Mirror twins (x-z plane) of the kept panels followed by the sheet faces:
     ``p_panels`` the panels' own twins (kept indexing), the faces matched by mirrored
     centroid and normal; None if a face has no twin."""

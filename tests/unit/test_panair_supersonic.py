@@ -178,8 +178,9 @@ def test_three_fin_haack_rocket_with_body_behind_blunt_fins_solves():
     _, c, n, a = p.geometry()
     caps = np.isin(p.network, [k for k, nm in enumerate(p.names) if nm.startswith("cap")])
     fwd = p.integrate & ~caps & (c[:, 0] < 2.145 + 0.23)   # ahead of the fins' trailing edge
-    cna_fwd = integrate_forces(res[1].cp[fwd], c[fwd], p.force_normals(n)[fwd], a[fwd],
-                               sref=sref, lref=0.15, xref=0.0, symmetric=False)["CN"] / math.radians(2.0)
+    cn_fwd = integrate_forces(res[1].cp[fwd], c[fwd], p.force_normals(n)[fwd], a[fwd],
+                              sref=sref, lref=0.15, xref=0.0, symmetric=False)["CN"]
+    cna_fwd = cn_fwd / math.radians(2.0)
     planform = 3 * 0.5 * (0.23 + 0.11) * 0.185 / sref
     bound = 2 + 4 / math.sqrt(1.25) * planform * 0.5 * 1.5
     print(f"CN {cn}, CN-alpha {cna:.2f} /rad, ahead of the fin trailing edge {cna_fwd:.2f} "

@@ -6,8 +6,8 @@ potential jump of the fin's trailing edge is carried aft unchanged.  Checked on 
 cone-cylinder with a fin pair in the lifting plane and 2.5 cal of body behind it, Mach 1.6:
 the jump across the wake's root line on the body keeps its trailing-edge value to the
 base within 15 % (without the sheets it decays: the case the sheets fix), and the
-afterbody carries lift, not a download; and the mirror-folded solve of a 3-fin full model with sheets equals the
-unfolded one.
+afterbody carries lift, not a download; and the mirror-folded solve of a 3-fin full
+model with sheets equals the unfolded one.
 """
 import math
 from dataclasses import replace
