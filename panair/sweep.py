@@ -267,7 +267,7 @@ class _Checkpoint:
 
 
 #: bump when the solver's numbers change, so old checkpoints are not reused
-CHECKPOINT_VERSION = 2
+CHECKPOINT_VERSION = 3
 
 
 def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float,

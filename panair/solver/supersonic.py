@@ -8,8 +8,10 @@ subsonic solver, the compressibility axis is the body x axis), with the
 influence of each panel limited to its downstream Mach cone
 (:mod:`.supersonic_influence`).  In supersonic flow a source distribution
 represents the flow outside a closed body of revolution without doublets;
-the wake and the base are downstream of everything that is integrated, so
-they are left out (the linear theory is causal).  The mass flux through a
+the base and its wake are downstream of everything that is integrated, so
+they are left out (the linear theory is causal).  A fin's trailing-edge wake is
+not, where the body continues behind the fin: it is solved as a two-faced source
+sheet with the wake conditions (:mod:`.supersonic_wake`).  The mass flux through a
 panel is the difference of the closed-form potential between a point on
 its wetted side and a point one step further along the conormal
 (-n_X, n_Y, n_Z) (a directional derivative); the tangential velocity
@@ -71,6 +73,8 @@ from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gra
 from .subsonic import PanelResult, _free_stream, _refuse_sideslip
 from .nose_correction import TangentCone
 from .supersonic_influence import panel_frames, source_potential_pair
+from .supersonic_wake import (cut_wake_neighbours, fin_plane as _fin_plane, sheet_geometry,
+                              sheet_sides, sheet_twins, wake_rows, wake_sheets)
 
 __all__ = ["SupersonicSolver", "MACH_SUPERSONIC_MIN", "MACH_SUPERSONIC_MAX", "G1_MIN"]
 
@@ -87,6 +91,9 @@ SIDE_TOL = 1e-6
 below which a receiver is on neither side, x the model's largest extent [-]:
 far above rounding (1e-16), far below a fin's half-thickness (1e-3 of the
 model's size and more)."""
+WAKE_SHEETS = True
+"""Fin wakes behind which the body continues are part of the solve
+(:mod:`.supersonic_wake`); False: the wall model before session 10 (for comparison)."""
 G1_MIN = 0.05
 """Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
 panel is (nearly) Mach-inclined and linear theory has no valid solution."""
@@ -241,13 +248,6 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
         src_fin[side != 0] = k
         src_side[side != 0] = side[side != 0]
     return recv, src_fin, src_side
-
-
-def _fin_plane(fin_centroids):
-    """A fin's mid-plane: (point, unit normal) of the least-squares plane through its
-    panel centroids (the smallest singular direction)."""
-    c0 = fin_centroids.mean(axis=0)
-    return c0, np.linalg.svd(fin_centroids - c0)[2][2]
 
 
 def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
@@ -405,7 +405,8 @@ class SupersonicSolver:
         nb = panels.neighbours[keep]
         self._nb = np.where(nb >= 0, idx[np.maximum(nb, 0)], nb)
         twins = mirror_map(panels) if mirror else None
-        self._fold = MirrorFold(idx[twins[keep]]) if twins is not None else None
+        self._fold_twins = idx[twins[keep]] if twins is not None else None
+        self._fold = MirrorFold(self._fold_twins) if twins is not None else None
         flat, cen, nrm, area = panels.geometry(1.0 / self.B)
         flat, cen, nrm = flat[keep], cen[keep], nrm[keep]
         _, _, g1 = panel_frames(flat, nrm)
@@ -423,6 +424,27 @@ class SupersonicSolver:
         edges = np.linalg.norm(np.roll(flat, -1, axis=1) - flat, axis=-1)
         shortest = np.where(edges > 1e-9 * edges.max(), edges, np.inf).min(axis=1)
         scale = np.minimum(np.sqrt(np.maximum(area[keep], 1e-300)), shortest)
+        sides = _fin_sides(panels, keep, cen, nrm)
+        # fin wakes where the body continues behind a fin (:mod:`.supersonic_wake`):
+        # two-faced source sheets, unknowns after the panels' (m of them)
+        self._m = m = len(cen)
+        lifting = ~panels.wake_at_base
+        fins = np.unique(panels.network[panels.wake_upper[lifting]]) if np.any(lifting) else []
+        sheets = wake_sheets(panels, keep, fins) if WAKE_SHEETS else None
+        self.wake_cells = 0 if sheets is None else sheets.n_cells
+        if sheets is not None:
+            fl_w, cen_w, nrm_w, scale_w = sheet_geometry(sheets, self.B)
+            x_phys = cen[:, 0] * self.B
+            self._nb = cut_wake_neighbours(self._nb, np.c_[x_phys, cen[:, 1:]], sides[0],
+                                           sheets.x_root_te, sides[1] >= 0)
+            if self._fold is not None:
+                ext = sheet_twins(self._fold_twins, cen_w, nrm_w,
+                                  1e-9 * float(np.ptp(cen, axis=0).max()))
+                self._fold = MirrorFold(ext) if ext is not None else None
+            flat, cen, nrm = (np.concatenate([a, b]) for a, b in
+                              ((flat, fl_w), (cen, cen_w), (nrm, nrm_w)))
+            scale = np.concatenate([scale, scale_w])
+            sides = sheet_sides(sides, sheets)
         eps0 = FD_OFFSET * scale
         eps = FD_STEP * scale
         p0 = cen + eps0[:, None] * nrm                      # wetted side, off the panel
@@ -434,7 +456,7 @@ class SupersonicSolver:
         # (folded: the rows of one panel of each mirror pair, the twins' columns added)
         rows = np.arange(len(cen)) if self._fold is None else self._fold.reps
         phi0, phi1, bad_row = source_potential_pair(
-            p0, p1, flat, nrm, sides=_fin_sides(panels, keep, cen, nrm),
+            p0, p1, flat, nrm, sides=sides,
             mirror=panels.symmetric, rows=rows[np.argsort(-cen[rows, 0], kind="stable")])
         if bad_row >= 0:
             raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
@@ -442,6 +464,9 @@ class SupersonicSolver:
             phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
         A = (phi1 - phi0) / eps[rows, None]
         del phi1
+        if sheets is not None:           # the sheets' rows: the wake conditions
+            pos = (lambda j: int(self._fold.rep_of[j])) if self._fold is not None else int
+            wake_rows(A, phi0, m, sheets, pos, idx)
         self._phi0 = phi0
         try:
             self._lu = CausalLU(A, cen[rows, 0])
@@ -514,10 +539,12 @@ class SupersonicSolver:
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])
         vt = v / np.array([self.B, 1.0, 1.0])
         rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
+        n_all = len(self._phi0[0]) if self._fold is None else len(self._fold.rep_of)
+        full = np.vstack([rhs, np.zeros((n_all - self._m, len(v)))])   # sheets: zero
         if self._fold is None:
-            phi = self._phi0 @ self._lu.solve(rhs)
+            phi = (self._phi0 @ self._lu.solve(full))[:self._m]
         else:
-            phi = self._fold.expand(self._phi0 @ self._lu.solve(rhs[self._fold.reps]))
+            phi = self._fold.expand(self._phi0 @ self._lu.solve(full[self._fold.reps]))[:self._m]
         nu = self._nrm_t * np.array([-1.0, 1.0, 1.0])
         out = []
         # fin tip caps are solved (the two sides of a fin communicate through them)

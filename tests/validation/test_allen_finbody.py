@@ -11,9 +11,32 @@ alpha0 point, so alpha0 = 0 with CN = Cm = 0, as derived.csv assumes), our table
 evaluated at the same two angles.  Goal (issue 13): CA0 within 10 %, CN-alpha within
 10 %, CP within 0.3 caliber at every Mach number, all five fin sets.
 
-Measured (session 9): the goals are not met, chiefly CN-alpha of the short-root
-fins 1 and 5 at Mach 0.6-0.9 (+21 ... +39 %) and the CP at Mach 1.2-2 (0.2-0.9 cal
-forward on every fin set).  What was ruled out, with numbers (session 9 report):
+Measured (session 10): 0, 0, 4, 2, 3 of 8 Mach numbers meet all three goals (fins
+1, 5, 9, 10, 12; session 9: 0, 0, 1, 3, 2).  The supersonic CP, 0.2-1.0 cal forward
+of the tunnel on every fin set in session 9, was the afterbody (2.2-2.6 cal of body
+behind the fins): the supersonic solver had no fin wake, so the fins' potential
+jump died out on the body behind them and the afterbody carried a download
+(fin 10, Mach 1.6: CN-alpha -1.04 /rad at 11.2 cal; an independent planar estimate
+with the same no-wake assumption, w = 0 off the fin in the fin's plane, gives -0.86).
+With the wake sheets (panair.solver.supersonic_wake: linear theory's wake, no load,
+the trailing-edge potential jump carried aft) the afterbody carries +0.9 ... +2.0 /rad
+of carry-over lift, and the CP at Mach 1.6-2.96 is within -0.17 ... +0.25 cal on fins
+5, 9, 10, 12 (session 9: -0.79 ... +0.01); fin 1 (single-point secant) +0.02 ... +0.71
+at Mach 1.6-2.3; Mach 1.2: -0.02 ... +0.56 (session 9: -0.73 ... -0.23).
+What that exposes: supersonic CN-alpha is now high on the short-span fins, fin 10
++14 ... +34 %, fin 5 +10 ... +37 %, fin 1 +21 ... +42 %, while fins 9 and 12 (3 cal
+span) are within -4 ... +9 % at Mach 1.2-2 (fin 9 at 2.3 and 2.96: +33 / +27 %, where
+the tunnel's CN-alpha drops 26 % from Mach 2 to 2.3); session 9's match there
+(fin 10 -2 ... +5 %) was the afterbody's spurious download cancelling it.  Not
+resolved: candidates are linear theory's nose (Mach 1.6: 2.84 /rad on the 3-cal
+ogive, slender-body theory 2) and, for spans of 0.5 cal, the body boundary layer at
+the fin roots (outside a potential solver); Mach 1.2 is transonic for linear theory.
+Noticed, not investigated (session 10): a flat delta wing (pointed tip) on a thin body,
+our solver vs exact linear theory (Stewart: CL-alpha = 2 pi cot L / E(k)), wing panels
+on the wing's area: leading edge 63.4 deg (subsonic) -36 / -30 % at Mach 1.6 / 2.0,
+45 deg (supersonic) -15 / -12 %: the fin-side shadow model (no communication around a
+subsonic leading edge) and pointed tips deserve a check of their own.
+What was ruled out in session 9, with numbers:
 the panel mesh (twice finer: CN-alpha fin 1 +0.6 %, fin 5 -1.4 %), the solver (its potential
 CN-alpha is within -9 ... +5 % of the independent slender-body interference
 estimate below, on all five fins), the single-point secant of fins 1 and 9 (on the
@@ -179,8 +202,9 @@ def test_allen_fin_body(fin, tmp_path):
     print(f"{fin}: local-inclination Mach numbers (not bounded): {t.metadata['mach_local_inclination']}")
     w = np.max(np.array(worst), axis=0)
     # regression bounds at the Mach numbers linear theory solved: the measured state
-    # (CN-alpha 20-40 % high subsonic on fins 1 and 5; the goals are printed per Mach number)
-    assert w[0] < 0.35 and w[1] < 0.5 and w[2] < 1.2
+    # (CN-alpha 20-40 % high subsonic on fins 1 and 5 and supersonic on fins 1, 5, 10;
+    # CP within 0.75 cal; the goals are printed per Mach number)
+    assert w[0] < 0.35 and w[1] < 0.5 and w[2] < 0.8
     # the solver against the independent slender-body interference estimate (potential
     # part, small angle; measured -9 ... +5 % on the five fin sets at Mach 0.6 and 0.9)
     for m in (0.6, 0.9):

@@ -1,0 +1,261 @@
+"""Fin trailing-edge wakes of the supersonic source-panel solver: the vortex sheet
+behind a fin, where a body continues behind it.
+
+Linear theory (Epton & Magnus, PAN AIR theory document, NASA CR-3251, 1990, sec.
+B.3 and the wake networks of sec. 5; Ward, *Linearized Theory of Steady High-Speed
+Flow*, 1955, ch. 8): a thin wake carries no load and no thickness, so across it the
+pressure (linear theory: the axial perturbation velocity u) and the normal mass flux
+are continuous, while the potential jumps by the fin's trailing-edge value, carried
+unchanged along the stream.  In a source formulation whose fin faces act only on
+their own side (:func:`panair.solver.supersonic._fin_sides`) that jump has nowhere to
+live behind the trailing edge: without a wake the two sides meet on the body behind
+the fin and the potential jump dies out there (measured on the Allen fin-body
+configurations at Mach 1.6: the body's potential jump at the wake line fell from
+4.9e-3 at the trailing edge to 1.2e-3 two calibers aft), which is the flow of a fin
+with no trailing vortices; the afterbody then carried a spurious download (CN-alpha
+-1.04 /rad behind Allen's fin 10, 26 % of the fins' own lift, its moment 0.6 calibre
+of centre of pressure).  Slender-body theory with a flat vortex wake gives the
+afterbody no lift at all (the apparent mass of the fin section is kept, e.g.
+Nielsen, *Missile Aerodynamics*, 1960, ch. 5).
+
+The wake is therefore meshed for the supersonic solve as a sheet of two faces in the
+fin's plane, from the trailing edge to the end of the body (nothing further aft acts
+on an integrated panel: the theory is causal), each face a source panel acting on
+its own side only (as the fin's faces), with two conditions per cell instead of the
+wall's: continuity of the normal mass flux and of u.  The wake of a fin with another
+fin in line behind it stops at that fin's leading edge (the aft fin's wake carries
+on; the forward fin's jump is not passed through it).  The sheets are solved, never
+integrated.  Numeric-only.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .influence import planar_corners
+
+__all__ = ["WakeSheets", "fin_plane", "wake_sheets", "cut_wake_neighbours", "sheet_twins",
+           "sheet_geometry", "sheet_sides", "wake_rows"]
+
+#: Cells per body panel length behind the trailing edge (measured on Allen's fin 10 at
+#: Mach 1.6: 1, 2 and 4 give the configuration's CN-alpha within 0.07 % and its
+#: Cm-alpha within 0.1 %)
+CELLS_PER_BODY_PANEL = 1
+
+
+@dataclass
+class WakeSheets:
+    """Two-faced wake cells (physical coordinates).
+
+    corners : ndarray (2 w, 4, 3) [m]
+        Faces: rows 0 .. w-1 the faces on the +e_t side of their fin's plane, rows
+        w .. 2w-1 the same cells facing the other way (reversed corner order).
+    fin : ndarray (2 w,) of int
+        Index of the fin (in :func:`panair.solver.supersonic._fin_sides` order).
+    side : ndarray (2 w,) [-]
+        +1 / -1: the side of the fin's plane each face looks to.
+    x_root_te : ndarray (n_fins,) [m]
+        Where each fin's wake leaves the body (its innermost cell's leading x; inf
+        for a fin without a sheet).
+    te : ndarray (w, 2) of int
+        Per cell, the fin's trailing-edge panels its strip is shed from (PanelSet
+        indices), the one facing +e_t first.
+    """
+
+    corners: np.ndarray
+    fin: np.ndarray
+    side: np.ndarray
+    x_root_te: np.ndarray
+    te: np.ndarray
+
+    @property
+    def n_cells(self) -> int:
+        return len(self.corners) // 2
+
+
+def fin_plane(fin_centroids):
+    """A fin's mid-plane: (point, unit normal) of the least-squares plane through its
+    panel centroids (the smallest singular direction)."""
+    c0 = fin_centroids.mean(axis=0)
+    return c0, np.linalg.svd(fin_centroids - c0)[2][2]
+
+
+def wake_sheets(panels, keep, fins) -> WakeSheets | None:
+    """The wake sheets of the fins ``fins`` (network ids) behind which the kept
+    (integrated) panels continue, or None when no fin has a body behind it.
+
+    Streamwise cells from each trailing-edge strip of a fin's PanelSet wake to the
+    aft end of the kept panels (or to the leading edge of a fin in line behind),
+    split at the body's axial panel stations there (each body interval in
+    CELLS_PER_BODY_PANEL cells)."""
+    if not len(fins) or not len(panels.wake_corners):
+        return None
+    size = float(np.ptp(panels.corners.reshape(-1, 3), axis=0).max())
+    tol = 1e-9 * size
+    kept = panels.corners[keep]
+    x_end = float(kept[..., 0].max())
+    fin_of_panel = panels.network
+    body_like = ~np.isin(fin_of_panel, fins) & keep
+    stations = np.unique(np.round(panels.corners[body_like][..., 0].ravel(), 12))
+    if CELLS_PER_BODY_PANEL > 1 and len(stations) > 1:
+        sub = np.linspace(0.0, 1.0, CELLS_PER_BODY_PANEL + 1)[1:-1]
+        mids = stations[:-1, None] + np.diff(stations)[:, None] * sub[None, :]
+        stations = np.unique(np.concatenate([stations, mids.ravel()]))
+    # the body's radius at its stations (largest corner radius), for the guard below
+    bc = panels.corners[body_like].reshape(-1, 3)
+    bx = np.round(bc[:, 0], 12)
+    r_st = np.array([np.linalg.norm(bc[bx == x][:, 1:], axis=1).max() for x in np.unique(bx)])
+    x_st = np.unique(bx)
+    _, cen_all, nrm_all, _ = planar_corners(panels.corners)
+    planes = [fin_plane(cen_all[fin_of_panel == f]) for f in fins]
+    x_range = [(float(panels.corners[fin_of_panel == f][..., 0].min()),
+                float(panels.corners[fin_of_panel == f][..., 0].max())) for f in fins]
+    lifting = np.nonzero(~panels.wake_at_base)[0]
+    cells, fin_idx, te_idx = [], [], []
+    for k, f in enumerate(fins):
+        c0, e_t = planes[k]
+        # a fin in line behind (same plane, starts aft of this one): stop there
+        x_stop = x_end
+        for k2, f2 in enumerate(fins):
+            c2, e2 = planes[k2]
+            r0, r2 = c0 * [0.0, 1.0, 1.0], c2 * [0.0, 1.0, 1.0]
+            same_side = float(r0 @ r2) > 0.99 * float(np.linalg.norm(r0) * np.linalg.norm(r2))
+            if (k2 != k and same_side and abs(abs(float(e_t @ e2)) - 1.0) < 1e-6
+                    and abs(float((c2 - c0) @ e_t)) < 1e-6 * size
+                    and x_range[k2][0] > x_range[k][1] - tol):
+                x_stop = min(x_stop, x_range[k2][0])
+        mine = lifting[fin_of_panel[panels.wake_upper[lifting]] == f]
+        strips: dict = {}
+        for w in mine:                                # the first wake panel of each strip
+            key = (int(panels.wake_upper[w]), int(panels.wake_lower[w]))
+            xmin = float(panels.wake_corners[w][:, 0].min())
+            if key not in strips or xmin < strips[key][0]:
+                strips[key] = (xmin, w)
+        for (up, lo), (_, w) in strips.items():
+            if lo < 0:
+                continue
+            pair = (up, lo) if float(nrm_all[up] @ e_t) >= float(nrm_all[lo] @ e_t) else (lo, up)
+            wc = panels.wake_corners[w]
+            te = wc[np.argsort(wc[:, 0], kind="stable")[:2]]     # the trailing-edge edge
+            if np.linalg.norm(te[0] - te[1]) <= tol:
+                continue
+            x0 = float(te[:, 0].max())
+            xs = stations[(stations > x0 + tol) & (stations < x_stop - tol)]
+            xs = np.append(xs, x_stop) if x_stop > x0 + tol else xs
+            prev = te.copy()
+            for xn in xs:
+                nxt = te.copy()
+                nxt[:, 0] = xn
+                q = np.array([prev[0], prev[1], nxt[1], nxt[0]])
+                # a body growing behind the fin would put the sheet inside it: stop there
+                r_in = float(np.linalg.norm(q[:, 1:], axis=1).min())
+                if r_in < float(np.interp(xn, x_st, r_st)) - 1e-6 * size:
+                    break
+                if np.linalg.norm(np.cross(q[2] - q[0], q[1] - q[3])) > tol * size:
+                    cells.append(q)
+                    fin_idx.append(k)
+                    te_idx.append(pair)
+                prev = nxt
+    if not cells:
+        return None
+    cells = np.array(cells)
+    fin_idx = np.array(fin_idx, np.int64)
+    _, _, nrm, _ = planar_corners(cells)
+    e_t = np.array([planes[k][1] for k in fin_idx])
+    s = np.sign(np.einsum("nj,nj->n", nrm, e_t))
+    pos = np.where(s[:, None, None] > 0, cells, cells[:, ::-1])      # faces looking to +e_t
+    corners = np.concatenate([pos, pos[:, ::-1]])
+    radial = np.linalg.norm(cells.mean(axis=1)[:, 1:], axis=1)
+    x_root_te = np.full(len(fins), np.inf)
+    for k in np.unique(fin_idx):
+        on = np.nonzero(fin_idx == k)[0]
+        inner = on[radial[on] <= radial[on].min() * (1 + 1e-9) + tol]
+        x_root_te[k] = float(cells[inner][..., 0].min())
+    return WakeSheets(corners=corners, fin=np.concatenate([fin_idx, fin_idx]),
+                      side=np.concatenate([np.ones(len(cells)), -np.ones(len(cells))]),
+                      x_root_te=x_root_te, te=np.array(te_idx, np.int64))
+
+
+def cut_wake_neighbours(nb, cen, sides_recv, fins_x_te, is_fin):
+    """Surface-gradient neighbours (kept panels, (m, 4)) without the pairs that
+    straddle a wake's root line on the body: two body panels aft of fin k's root
+    trailing edge, both in its half of the cross-section, on opposite sides of its
+    plane (``sides_recv[k]``: -1/+1, 0 outside the half).  The potential jumps there
+    (the wake's jump), so a gradient across it is meaningless."""
+    out = nb.copy()
+    valid = out >= 0
+    j = np.where(valid, out, 0)
+    for k, x_te in enumerate(fins_x_te):
+        r = sides_recv[k]
+        aft = (cen[:, 0] > x_te) & ~is_fin
+        cross = valid & aft[:, None] & aft[j] & (r[:, None] * r[j] < 0)
+        out[cross] = -1
+    return out
+
+
+def sheet_twins(p_panels, cen_sheet, nrm_sheet, tol) -> np.ndarray | None:
+    """Mirror twins (x-z plane) of the kept panels followed by the sheet faces:
+    ``p_panels`` the panels' own twins (kept indexing), the faces matched by mirrored
+    centroid and normal; None if a face has no twin."""
+    from scipy.spatial import cKDTree
+    flip = np.array([1.0, -1.0, 1.0])
+    key = np.hstack([cen_sheet, nrm_sheet * tol * 1e3])
+    dist, q = cKDTree(key).query(np.hstack([cen_sheet * flip, nrm_sheet * flip * tol * 1e3]))
+    if not np.all(dist <= 10 * tol) or not np.array_equal(q[q], np.arange(len(q))):
+        return None
+    m = len(p_panels)
+    return np.concatenate([p_panels, m + q])
+
+
+def sheet_geometry(sheets: WakeSheets, B: float):
+    """Flat corners, centroids, normals (scaled space, x / B) and regularisation
+    length (as the solver's panels: sqrt(area), at most the shortest edge) of the
+    sheet faces."""
+    c = sheets.corners.copy()
+    c[..., 0] /= B
+    flat, cen, nrm, area = planar_corners(c)
+    edges = np.linalg.norm(np.roll(flat, -1, axis=1) - flat, axis=-1)
+    shortest = np.where(edges > 1e-9 * edges.max(), edges, np.inf).min(axis=1)
+    return flat, cen, nrm, np.minimum(np.sqrt(np.maximum(area, 1e-300)), shortest)
+
+
+def sheet_sides(sides, sheets: WakeSheets):
+    """The fin-side assignment (recv, src_fin, src_side) of the kept panels extended
+    by the sheet faces: a face acts on, and receives from, its own side of its fin's
+    plane only (as the fin's faces)."""
+    recv, src_fin, src_side = sides
+    rw = np.zeros((len(recv), len(sheets.fin)))
+    rw[sheets.fin, np.arange(len(sheets.fin))] = sheets.side
+    return (np.hstack([recv, rw]), np.concatenate([src_fin, sheets.fin]),
+            np.concatenate([src_side, sheets.side]))
+
+
+def wake_rows(A, Phi, m: int, sheets: WakeSheets, rowpos, kept_index):
+    """Replace the sheet faces' rows of the (folded) influence matrix ``A`` (row
+    ``rowpos(j)`` for unknown j) by the wake conditions of each cell c (faces u = m + c
+    looking to +e_t, l = m + w + c): continuity of the normal mass flux (the faces'
+    conormal fluxes sum to zero) and the potential jump of the fin's trailing edge
+    carried unchanged: phi(u) - phi(l) = phi(te+) - phi(te-) (``Phi``: the potential
+    rows at the collocation points, folded columns; ``kept_index`` maps PanelSet
+    indices to unknowns).  This is PAN AIR's wake condition (doublet strength constant
+    along the stream, NASA CR-3251 sec. 5); the pointwise form, continuity of u, made
+    the marching along a strip unstable with constant-strength sources (pivots 1e-11
+    at the last cells).  Folded twins share one row pair; a cell that is its own
+    mirror image keeps the mass-flux row only."""
+    n_cells = sheets.n_cells
+    An, done = {}, set()
+    for c in range(n_cells):
+        u, lo = m + c, m + n_cells + c
+        ru, rl = rowpos(u), rowpos(lo)
+        pair = (min(ru, rl), max(ru, rl))
+        if pair in done:
+            continue
+        done.add(pair)
+        an_u = An.setdefault(ru, A[ru].copy())
+        an_l = An.setdefault(rl, A[rl].copy())
+        A[pair[0]] = an_u + an_l if ru != rl else an_u
+        if ru != rl:
+            tp, tn = (rowpos(int(kept_index[t])) for t in sheets.te[c])
+            A[pair[1]] = (Phi[ru] - Phi[rl]) - (Phi[tp] - Phi[tn])
+    return sorted({r for p in done for r in p})
