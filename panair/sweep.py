@@ -4,8 +4,8 @@ Angles are the polar aeroballistic convention: ``alpha`` is the total
 angle of attack, in the body's x-z plane (for a rocket with 4 (or any
 even number of) fins meshed with no fin in that plane).  For every Mach
 number the panels' influence matrix is built and factorised once and all
-angles are right-hand sides (subsonic, on a full model meshed as its own mirror
-image, e.g. 3 fins rolled 0 deg: for one panel of each mirror pair,
+angles are right-hand sides (on a full model meshed as its own mirror image, e.g. 3
+fins rolled 0 or 90 deg: for one panel of each mirror pair,
 :class:`panair.solver.panels.MirrorFold`); Mach numbers run in parallel in a
 process pool with a progress bar.
 
