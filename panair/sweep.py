@@ -82,6 +82,7 @@ from .a502 import find_panair, run_panair
 from .bridge import transonic_bridge
 from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
+from .solver.panels import mirror_plane
 
 __all__ = ["sweep_pressure", "build_table", "body_planform", "SEA_LEVEL_RE_PER_M_PER_MACH"]
 
@@ -315,6 +316,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     panels = build_panels(nets, symmetric=symmetric) if len(sub) or not len(sup) else None
     panels_sup = (panels if nets_sup is nets and panels is not None
                   else build_panels(nets_sup, symmetric=symmetric) if len(sup) else None)
+    for ps in {id(p): p for p in (panels, panels_sup) if p is not None}.values():
+        mirror_plane(ps)          # found once here, kept on the panels the jobs carry
     gap = mach[(mach > MACH_SUBSONIC_MAX) & (mach < MACH_SUPERSONIC_MIN)]
     if use_panair and len(sup) and not find_panair():
         raise SolverError("use_panair: no PANAIR executable (set IRONBARK_PANAIR or put "

@@ -365,7 +365,30 @@ def mirror_plane(panels: PanelSet):
     onto some fin k: the plane at (phi_0 + phi_k) / 2), e.g. 3 fins rolled 90 deg,
     whose plane through the fin at 210 deg is one (the mesh's seam lies in it,
     :func:`panair.mesh.mesh_rocket`).  Fins are the networks that shed trailing-edge
-    wakes; a fin's roll angle is that of the mean of its corners (on its mid-plane)."""
+    wakes; a fin's roll angle is that of the mean of its corners (on its mid-plane).
+
+    The answer is kept on ``panels`` with a digest of its geometry and connectivity (a
+    sweep finds it once; its Mach-number jobs get it with the pickled panels)."""
+    key = _digest(panels)
+    cached = getattr(panels, "_mirror_plane", None)
+    if cached is not None and cached[0] == key:
+        return cached[1]
+    found = _find_mirror_plane(panels)
+    panels._mirror_plane = (key, found)
+    return found
+
+
+def _digest(panels: PanelSet) -> str:
+    import hashlib
+    h = hashlib.sha1()
+    for a in (panels.corners, panels.wake_corners, panels.network, panels.integrate,
+              panels.wake_upper, panels.wake_lower, panels.wake_at_base):
+        h.update(np.ascontiguousarray(a).tobytes())
+    h.update(bytes([bool(panels.symmetric)]))
+    return h.hexdigest()
+
+
+def _find_mirror_plane(panels: PanelSet):
     p = mirror_map(panels)
     if p is not None:
         return p, np.array(XZ_NORMAL)
@@ -441,6 +464,26 @@ class MirrorFold:
         return self._fold(M, rows[self._paired], self.reps[self._paired],
                           self._twin[self._paired], -1.0)
 
+    def fold_difference(self, M0, M1, rows, step, odd: bool = False):
+        """(fold(M0), (fold(M1) - fold(M0)) / step) for the rows ``rows`` of M0, M1
+        (the representatives'), ``step`` per representative; ``odd``: :meth:`fold_odd`
+        (rows and steps of the paired ones)."""
+        rows = np.asarray(rows, np.int64)
+        step = np.asarray(step, float)
+        if odd:
+            args = (rows[self._paired], self.reps[self._paired], self._twin[self._paired], -1.0)
+            step = step[self._paired]
+        else:
+            args = (rows, self.reps, np.where(self._paired, self._twin, -1), 1.0)
+        from .kernels import HAVE_NUMBA, fold_difference
+        if HAVE_NUMBA:
+            r, a, b, sign = args
+            return fold_difference(np.ascontiguousarray(M0, float), np.ascontiguousarray(M1, float),
+                                   r, np.asarray(a, np.int64), np.asarray(b, np.int64),
+                                   float(sign), np.ascontiguousarray(step))
+        f0, f1 = self._fold(M0, *args), self._fold(M1, *args)
+        return f0, (f1 - f0) / step[:, None]
+
     @staticmethod
     def _fold(M, rows, a, b, sign):
         """M[rows][:, a] +- M[rows][:, b] (b < 0: nothing added)."""
@@ -464,6 +507,12 @@ class MirrorFold:
         out[self.reps[self._paired]] = x
         out[self._twin[self._paired]] = -x
         return out
+
+    def basis(self) -> np.ndarray:
+        """Rows: the x axis and the plane's cross direction (0, n_z, -n_y), both in the
+        plane (symmetric), and its normal (antisymmetric): every vector is a combination."""
+        ny, nz = self.normal[1], self.normal[2]
+        return np.array([[1.0, 0.0, 0.0], [0.0, nz, -ny], [0.0, ny, nz]])
 
     def parts(self, v: np.ndarray):
         """(even, odd) parts (v + R v) / 2, (v - R v) / 2 of vectors ``v`` (k, 3) under

@@ -266,10 +266,14 @@ class SubsonicSolver:
         vt = v / stretch                                                      # stretched free stream
         sigma = -(self._nrm_t @ vt.T)                                         # (n, k)
         if fold is not None and fold.odd:
-            # the free stream's parts symmetric and antisymmetric in the mirror plane
-            even, odd = fold.parts(v)
-            mu = (fold.expand(self._lu.solve(self._rhs(even / stretch)))
-                  + fold.expand_odd(self._lu_odd.solve(self._rhs(odd / stretch)[fold.paired])))
+            # mu is linear in the free stream: solved for three unit streams, the x axis
+            # and the plane's cross direction (symmetric in the mirror plane) and its
+            # normal (antisymmetric), and combined for every angle
+            basis = fold.basis()                                              # (3, 3)
+            mu_even = self._lu.solve(self._rhs(basis[:2] / stretch))
+            mu_odd = self._lu_odd.solve(self._rhs(basis[2:] / stretch)[fold.paired])
+            w = basis @ v.T                                                   # (3, k)
+            mu = fold.expand(mu_even @ w[:2]) + fold.expand_odd(mu_odd @ w[2:])
         else:
             mu = self._lu.solve(self._rhs(vt, sigma))
             if fold is not None:

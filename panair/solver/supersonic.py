@@ -440,19 +440,19 @@ class SupersonicSolver:
             mirror=panels.symmetric, rows=rows[np.argsort(-cen[rows, 0], kind="stable")])
         if bad_row >= 0:
             raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
-        systems = [(phi0, phi1, rows)]
-        if self._fold is not None:
+        # (potential, influence matrix, rows) of the system, or of the mirror fold's two
+        if self._fold is None:
+            systems = [(phi0, (phi1 - phi0) / eps[rows, None], rows)]
+        else:
             fold = self._fold
-            systems = [(fold.fold(phi0, rows), fold.fold(phi1, rows), rows)]
+            systems = [fold.fold_difference(phi0, phi1, rows, eps[rows]) + (rows,)]
             if fold.odd:       # the antisymmetric part's system (mirror plane not x-z)
-                systems.append((fold.fold_odd(phi0, rows), fold.fold_odd(phi1, rows),
-                                rows[fold.paired]))
+                systems.append(fold.fold_difference(phi0, phi1, rows, eps[rows], odd=True)
+                               + (rows[fold.paired],))
         del phi0, phi1
         self._phi0, self._lu = [], []
         while systems:
-            f0, f1, r = systems.pop(0)
-            A = (f1 - f0) / eps[r, None]
-            del f1
+            f0, A, r = systems.pop(0)
             self._phi0.append(f0)
             try:
                 lu = CausalLU(A, cen[r, 0])
