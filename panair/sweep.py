@@ -79,6 +79,7 @@ from ironbark_opt.aero.barrowman import BODY_LIFT_K, body_lift
 from ironbark_opt.errors import InputError, SolverError
 
 from .a502 import find_panair, run_panair
+from .blas_threads import limit_blas_threads
 from .bridge import transonic_bridge
 from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
@@ -378,7 +379,10 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
                 ckpt.save(m, arr, extra, cpm, how)
         elif workers > 1 and len(jobs) > 1:
-            with ProcessPoolExecutor(max_workers=workers) as pool:
+            # one BLAS thread per worker: the workers already fill the cores
+            # (panair.blas_threads: OpenBLAS's own threads oversubscribed them)
+            with ProcessPoolExecutor(max_workers=workers, initializer=limit_blas_threads,
+                                     initargs=(1,)) as pool:
                 for m, arr, extra, cpm, how in pool.map(_solve_one, jobs):
                     results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
                     ckpt.save(m, arr, extra, cpm, how)
