@@ -4,8 +4,8 @@ Angles are the polar aeroballistic convention: ``alpha`` is the total
 angle of attack, in the body's x-z plane (for a rocket with 4 (or any
 even number of) fins meshed with no fin in that plane).  For every Mach
 number the panels' influence matrix is built and factorised once and all
-angles are right-hand sides (subsonic, on a full model meshed as its own mirror
-image, e.g. 3 fins rolled 0 deg: for one panel of each mirror pair,
+angles are right-hand sides (on a full model meshed as its own mirror image, e.g. 3
+fins rolled 0 or 90 deg: for one panel of each mirror pair,
 :class:`panair.solver.panels.MirrorFold`); Mach numbers run in parallel in a
 process pool with a progress bar.
 
@@ -79,9 +79,11 @@ from ironbark_opt.aero.barrowman import BODY_LIFT_K, body_lift
 from ironbark_opt.errors import InputError, SolverError
 
 from .a502 import find_panair, run_panair
+from .blas_threads import limit_blas_threads
 from .bridge import transonic_bridge
 from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
+from .solver.panels import mirror_plane
 
 __all__ = ["sweep_pressure", "build_table", "body_planform", "SEA_LEVEL_RE_PER_M_PER_MACH"]
 
@@ -331,6 +333,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     panels = build_panels(nets, symmetric=symmetric) if len(sub) or not len(sup) else None
     panels_sup = (panels if nets_sup is nets and panels is not None
                   else build_panels(nets_sup, symmetric=symmetric) if len(sup) else None)
+    for ps in {id(p): p for p in (panels, panels_sup) if p is not None}.values():
+        mirror_plane(ps)          # found once here, kept on the panels the jobs carry
     gap = mach[(mach > MACH_SUBSONIC_MAX) & (mach < MACH_SUPERSONIC_MIN)]
     if use_panair and len(sup) and not find_panair():
         raise SolverError("use_panair: no PANAIR executable (set IRONBARK_PANAIR or put "
@@ -391,7 +395,10 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
                 ckpt.save(m, arr, extra, cpm, how)
         elif workers > 1 and len(jobs) > 1:
-            with ProcessPoolExecutor(max_workers=workers) as pool:
+            # one BLAS thread per worker: the workers already fill the cores
+            # (panair.blas_threads: OpenBLAS's own threads oversubscribed them)
+            with ProcessPoolExecutor(max_workers=workers, initializer=limit_blas_threads,
+                                     initargs=(1,)) as pool:
                 for m, arr, extra, cpm, how in pool.map(_solve_one, jobs):
                     results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
                     ckpt.save(m, arr, extra, cpm, how)

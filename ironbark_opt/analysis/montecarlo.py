@@ -223,7 +223,7 @@ class _NoBar:
 def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: bool = False, target=None,
                band: float | None = None, chunk: int = 250, executor=None, progress: bool = True,
                parameters: Mapping[str, float] | None = None, jit="auto", model=None,
-               output=None) -> Dispersion:
+               output=None, allow_failed: bool = False) -> Dispersion:
     """Fly ``samples`` dispersed copies of ``setup`` and collect statistics (numeric-only).
 
     Parameters
@@ -287,10 +287,19 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
     x_a = out["x_apogee"]
     apo = np.asarray(out["apogee_agl"], float)
     diverged = np.flatnonzero(~np.isfinite(apo) | (apo < 0.0))
-    if diverged.size:                      # as simulate refuses one (flight._check_converged)
-        raise SolverError(f"{setup.name}: the integration of {diverged.size} of {int(samples)} Monte Carlo "
-                          f"samples diverged (sample {int(diverged[0])}: apogee {apo[diverged[0]]:.6g} m AGL); "
-                          "no statistics were written. Please report it with the rocket and spec files")
+    if diverged.size and (not allow_failed or diverged.size == apo.size):
+        # as simulate refuses one (flight._check_converged)
+        raise SolverError(f"{setup.name}: {diverged.size} of {int(samples)} Monte Carlo samples reached no "
+                          f"apogee or diverged (sample {int(diverged[0])}: apogee {apo[diverged[0]]:.6g} m AGL); "
+                          "no statistics were written. An unstable rocket (flown with --allow-unstable) "
+                          "may tumble; otherwise please report it with the rocket and spec files")
+    ok = np.ones(apo.size, bool)
+    ok[diverged] = False
+    if diverged.size:
+        import warnings
+        warnings.warn(f"{setup.name}: {diverged.size} of {int(samples)} samples reached no apogee (an unstable "
+                      f"rocket tumbling; first: sample {int(diverged[0])}); the statistics are of the other "
+                      f"{int(ok.sum())}", UserWarning, stacklevel=2)
     data = {"sample": np.arange(int(samples))}
     for name in spec.parameters:
         data[column_name(name)] = column_values(name, P[params.index(name)])
@@ -303,12 +312,13 @@ def montecarlo(setup, spec, samples: int, *, seed: int | None = None, descent: b
                     landing_north_m=x_l[1], landing_distance_m=np.hypot(x_l[0], x_l[1]))
     table = {k: np.asarray(v) for k, v in data.items()}
     outputs = [c for c in table if c.startswith(("apogee_", "rail_exit_", "landing_"))]
-    stats = {c: statistics(table[c]) for c in outputs}
-    extra: dict[str, object] = {"apogee_ellipse": error_ellipse(x_a[0], x_a[1])}
+    stats = {c: statistics(table[c][ok]) for c in outputs}
+    extra: dict[str, object] = {"apogee_ellipse": error_ellipse(x_a[0][ok], x_a[1][ok]),
+                                "samples_failed": int(diverged.size)}
     if descent:
-        extra["landing_ellipse"] = error_ellipse(table["landing_east_m"], table["landing_north_m"])
+        extra["landing_ellipse"] = error_ellipse(table["landing_east_m"][ok], table["landing_north_m"][ok])
     if target_agl is not None:
-        apo = table["apogee_agl_m"]
+        apo = table["apogee_agl_m"][ok]
         extra.update(target_agl_m=float(target_agl), apogee_error_mean_m=float(apo.mean() - target_agl),
                      probability_above_target=float(np.mean(apo >= target_agl)))
         if band is not None:

@@ -170,7 +170,7 @@ def montecarlo_command(rocket, spec_path, samples, seed, descent, target, band_m
         progress = sys.stderr.isatty()
     disp = montecarlo(setup, spec, samples, seed=seed, descent=descent, target=target, band=band_m, chunk=chunk,
                       progress=progress, parameters=overrides, jit="auto" if jit is None else jit,
-                      executor=executor, output=results_dir)
+                      executor=executor, output=results_dir, allow_failed=allow_unstable)
     if csv_path:
         atomic_write(csv_path, lambda tmp: write_samples(disp, tmp))
     if samples_path:

@@ -38,8 +38,9 @@ def make_solver(panels: PanelSet, mach: float, *, sref: float, lref: float, xref
     sref : float [m^2], lref : float [m], xref : float [m]
     pressure_rule : str
     mirror : bool
-        Subsonic: flows without sideslip only, a mirror-symmetric full model solved on
-        half its panels (see SubsonicSolver, SupersonicSolver).
+        A full model that is its own mirror image in a plane through the axis solved on
+        half its panels (see SubsonicSolver, SupersonicSolver; in the x-z plane flows
+        without sideslip only).
 
     Raises
     ------

@@ -66,7 +66,8 @@ import os
 import numpy as np
 
 __all__ = ["HAVE_NUMBA", "use_compiled", "laplace_influence", "supersonic_source",
-           "supersonic_source_pair", "dense_to_csc", "warm_up"]
+           "supersonic_source_pair", "dense_to_csc", "fold_columns",
+           "fold_difference", "warm_up"]
 
 try:                                     # pragma: no cover - depends on the environment
     if os.environ.get("IRONBARK_NO_NUMBA"):
@@ -369,6 +370,52 @@ def dense_to_csc(A, order):
     return data, indices, indptr
 
 
+@njit(cache=True, nogil=True)
+def fold_columns(M, rows, a, b, sign):
+    """``out[i, c] = M[rows[i], a[c]] + sign * M[rows[i], b[c]]`` (just ``M[rows[i], a[c]]``
+    where ``b[c] < 0``; ``sign`` +1 or -1, an addition or a subtraction as NumPy's
+    ``out += ...`` / ``out -= ...``): a mirror fold
+    (:class:`panair.solver.panels.MirrorFold`) in one pass over the rows, without the
+    fancy-indexed copies (measured 0.14 s against 1.3 s for 4380 x 8760)."""
+    out = np.empty((len(rows), len(a)))
+    for i in range(len(rows)):
+        r = rows[i]
+        for c in range(len(a)):
+            v = M[r, a[c]]
+            if b[c] >= 0:
+                if sign > 0:
+                    v = v + M[r, b[c]]
+                else:
+                    v = v - M[r, b[c]]
+            out[i, c] = v
+    return out
+
+
+@njit(cache=True, nogil=True)
+def fold_difference(M0, M1, rows, a, b, sign, step):
+    """:func:`fold_columns` of ``M0`` and the folded divided difference
+    ``(fold(M1) - fold(M0)) / step[i]`` (``step`` per output row) in one pass: the
+    supersonic solver's folded potential and influence matrix, the same operations
+    as folding both and differencing them in NumPy."""
+    out0 = np.empty((len(rows), len(a)))
+    outd = np.empty((len(rows), len(a)))
+    for i in range(len(rows)):
+        r = rows[i]
+        for c in range(len(a)):
+            v0 = M0[r, a[c]]
+            v1 = M1[r, a[c]]
+            if b[c] >= 0:
+                if sign > 0:
+                    v0 = v0 + M0[r, b[c]]
+                    v1 = v1 + M1[r, b[c]]
+                else:
+                    v0 = v0 - M0[r, b[c]]
+                    v1 = v1 - M1[r, b[c]]
+            out0[i, c] = v0
+            outd[i, c] = (v1 - v0) / step[i]
+    return out0, outd
+
+
 def warm_up():
     """Compile (or load from the on-disk cache) the kernels the solvers call (subsonic
     influence, the supersonic source pair, the causal CSC) on a one-panel case, so
@@ -386,4 +433,7 @@ def warm_up():
         pt = np.array([[3.0, 0.5, 0.5]])
         source_potential_pair(pt, pt, flat_s, nrm_s, mirror=True, backend="compiled")
         dense_to_csc(np.eye(2), np.arange(2))
+        fold_columns(np.eye(2), np.arange(2), np.arange(1), np.ones(1, np.int64), -1.0)
+        fold_difference(np.eye(2), np.eye(2), np.arange(2), np.arange(1), np.ones(1, np.int64),
+                        -1.0, np.ones(2))
     return time.perf_counter() - t0

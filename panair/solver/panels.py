@@ -5,6 +5,7 @@ Numeric-only.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -293,8 +294,19 @@ def _attach_wake(net, edge_map, centroids, tol):
 MIRROR_TOL = 1e-10
 
 
-def mirror_map(panels: PanelSet) -> np.ndarray | None:
-    """Mirror twins of a full model's panels in the x-z plane, or None.
+def _reflection(normal):
+    """v -> v reflected in the plane through the x axis with unit normal ``normal``
+    (0, n_y, n_z); the x-z plane (normal (0, 1, 0)) exactly as y -> -y."""
+    n = np.asarray(normal, float)
+    if n[0] == 0.0 and n[1] == 1.0 and n[2] == 0.0:
+        flip = np.array([1.0, -1.0, 1.0])
+        return lambda v: v * flip
+    return lambda v: v - 2.0 * (v @ n)[..., None] * n
+
+
+def mirror_map(panels: PanelSet, normal=(0.0, 1.0, 0.0)) -> np.ndarray | None:
+    """Mirror twins of a full model's panels in the x-z plane (or in the plane through
+    the x axis with unit normal ``normal`` = (0, n_y, n_z)), or None.
 
     ``p[i]`` is the panel whose corners are panel ``i``'s mirrored (y -> -y, within
     MIRROR_TOL x the configuration size) with the mirrored normal (``p[i] == i`` for a
@@ -309,20 +321,20 @@ def mirror_map(panels: PanelSet) -> np.ndarray | None:
     from scipy.spatial import cKDTree
     if panels.symmetric or panels.n == 0:
         return None
-    flip = np.array([1.0, -1.0, 1.0])
+    reflect = _reflection(normal)
     size = float(np.ptp(panels.corners.reshape(-1, 3), axis=0).max()) or 1.0
     tol = MIRROR_TOL * size
 
     def twins(corners):
         flat, cen, nrm, _ = planar_corners(corners)
-        dist, p = cKDTree(cen).query(cen * flip)
+        dist, p = cKDTree(cen).query(reflect(cen))
         if not np.all(dist <= tol):
             return None, None
-        mc = corners * flip                       # every mirrored corner on a twin corner
+        mc = reflect(corners)                     # every mirrored corner on a twin corner
         gap = np.linalg.norm(mc[:, :, None, :] - corners[p][:, None, :, :], axis=-1)
         if not np.all(gap.min(axis=2) <= tol) or not np.array_equal(p[p], np.arange(len(p))):
             return None, None
-        return p, np.einsum("nj,nj->n", nrm[p], nrm * flip)
+        return p, np.einsum("nj,nj->n", nrm[p], reflect(nrm))
 
     p, same = twins(panels.corners)
     if p is None or np.any(same < 1 - 1e-6) or not np.array_equal(panels.integrate[p],
@@ -341,27 +353,169 @@ def mirror_map(panels: PanelSet) -> np.ndarray | None:
     return p
 
 
-class MirrorFold:
-    """The symmetric-flow system of a mirror-symmetric mesh on one panel per twin
-    pair (``p`` from :func:`mirror_map`): rows ``reps`` (the lower index of each
-    pair), and ``fold`` adds the columns of twins, since both unknowns are equal;
-    ``expand`` copies the representatives' values to their twins."""
+#: Unit normal of the x-z plane, the mirror plane of half models and of :func:`mirror_map`
+XZ_NORMAL = (0.0, 1.0, 0.0)
 
-    def __init__(self, p: np.ndarray):
+
+def mirror_plane(panels: PanelSet):
+    """A plane through the x axis in which a full model is its own mirror image:
+    ``(p, normal)`` with the twins ``p`` of :func:`mirror_map` and the plane's unit
+    normal (0, n_y, n_z), or None.  The x-z plane first; else the planes that map the
+    first fin onto a fin (a mirror plane of the layout maps fin 0, at roll phi_0,
+    onto some fin k: the plane at (phi_0 + phi_k) / 2), e.g. 3 fins rolled 90 deg,
+    whose plane through the fin at 210 deg is one (the mesh's seam lies in it,
+    :func:`panair.mesh.mesh_rocket`).  Fins are the networks that shed trailing-edge
+    wakes; a fin's roll angle is that of the mean of its corners (on its mid-plane).
+
+    The answer is kept on ``panels`` with a digest of its geometry and connectivity (a
+    sweep finds it once; its Mach-number jobs get it with the pickled panels)."""
+    key = _digest(panels)
+    cached = getattr(panels, "_mirror_plane", None)
+    if cached is not None and cached[0] == key:
+        return cached[1]
+    found = _find_mirror_plane(panels)
+    panels._mirror_plane = (key, found)
+    return found
+
+
+def _digest(panels: PanelSet) -> str:
+    import hashlib
+    h = hashlib.sha1()
+    for a in (panels.corners, panels.wake_corners, panels.network, panels.integrate,
+              panels.wake_upper, panels.wake_lower, panels.wake_at_base):
+        h.update(np.ascontiguousarray(a).tobytes())
+    h.update(bytes([bool(panels.symmetric)]))
+    return h.hexdigest()
+
+
+def _find_mirror_plane(panels: PanelSet):
+    p = mirror_map(panels)
+    if p is not None:
+        return p, np.array(XZ_NORMAL)
+    lifting = ~panels.wake_at_base
+    if panels.symmetric or not np.any(lifting):
+        return None
+    fins = np.unique(panels.network[panels.wake_upper[lifting]])
+    mean = [panels.corners[panels.network == f].reshape(-1, 3).mean(axis=0) for f in fins]
+    phi = [math.atan2(c[1], c[2]) for c in mean]            # roll, from +z toward +y
+    tried = []
+    for phi_k in phi:
+        psi = (0.5 * (phi[0] + phi_k)) % math.pi               # the plane's angle, mod pi
+        if any(abs(math.remainder(psi - t, math.pi)) < 1e-9 for t in tried + [0.0]):
+            continue                                           # (x-z: tried above)
+        tried.append(psi)
+        normal = np.array([0.0, math.cos(psi), -math.sin(psi)])
+        p = mirror_map(panels, normal)
+        if p is not None:
+            return p, normal
+    return None
+
+
+class MirrorFold:
+    """A mirror-symmetric mesh's system on one panel per twin pair (``p`` from
+    :func:`mirror_map`, the plane's unit ``normal`` from :func:`mirror_plane`):
+    rows ``reps`` (the lower index of each pair).
+
+    The even part of a solution (a flow symmetric in the plane) takes equal values on
+    twins: ``fold`` adds the columns of twins and ``expand`` copies the
+    representatives' values to them.  The odd part (a flow antisymmetric in the
+    plane) takes opposite values on twins and 0 on a panel that is its own image:
+    ``fold_odd`` subtracts the twins' columns, on the rows of the paired
+    representatives only (a panel in the plane has an odd equation 0 = 0), and
+    ``expand_odd`` copies with the sign changed.  A linear system invariant under
+    the mirror permutation splits exactly into the two (each free stream's even and
+    odd parts, :meth:`parts`), each half the size (an eighth of the LU each).
+    ``odd`` is False for the x-z plane (flows without sideslip are even there: the
+    solvers solve only the even part and refuse sideslip), True for another plane.
+    """
+
+    def __init__(self, p: np.ndarray, normal=XZ_NORMAL):
         n = len(p)
+        self.n = n
         self.reps = np.nonzero(np.arange(n) <= p)[0]
         pos = -np.ones(n, np.int64)
         pos[self.reps] = np.arange(len(self.reps))
         self.rep_of = pos[np.minimum(np.arange(n), p)]
         self._twin = p[self.reps]
         self._paired = self._twin != self.reps
+        self.normal = np.asarray(normal, float)
+        self.odd = not np.array_equal(self.normal, XZ_NORMAL)
+        self._reflect = _reflection(self.normal)
 
-    def fold(self, M: np.ndarray) -> np.ndarray:
-        """(m, n) coefficients of all unknowns -> (m, len(reps))."""
-        out = M[:, self.reps]
-        out[:, self._paired] += M[:, self._twin[self._paired]]
-        return out
+    def fold(self, M: np.ndarray, rows=None) -> np.ndarray:
+        """(m, n) coefficients of all unknowns -> (m, len(reps)); with ``rows`` only
+        those rows of ``M`` (without copying them first)."""
+        return self._fold(M, rows, self.reps, np.where(self._paired, self._twin, -1), 1.0)
 
     def expand(self, x: np.ndarray) -> np.ndarray:
         """Values of the representatives (len(reps), ...) -> all panels (n, ...)."""
         return x[self.rep_of]
+
+    @property
+    def paired(self) -> np.ndarray:
+        """Positions in ``reps`` of the representatives that have a twin (bool mask)."""
+        return self._paired
+
+    def fold_odd(self, M: np.ndarray, rows=None) -> np.ndarray:
+        """(len(reps), n) coefficients (the representatives' rows, or those ``rows`` of
+        ``M``) of all unknowns -> the odd system (n_paired, n_paired): rows and columns
+        of the paired representatives, the twins' columns subtracted."""
+        rows = np.arange(len(self.reps)) if rows is None else np.asarray(rows)
+        return self._fold(M, rows[self._paired], self.reps[self._paired],
+                          self._twin[self._paired], -1.0)
+
+    def fold_difference(self, M0, M1, rows, step, odd: bool = False):
+        """(fold(M0), (fold(M1) - fold(M0)) / step) for the rows ``rows`` of M0, M1
+        (the representatives'), ``step`` per representative; ``odd``: :meth:`fold_odd`
+        (rows and steps of the paired ones)."""
+        rows = np.asarray(rows, np.int64)
+        step = np.asarray(step, float)
+        if odd:
+            args = (rows[self._paired], self.reps[self._paired], self._twin[self._paired], -1.0)
+            step = step[self._paired]
+        else:
+            args = (rows, self.reps, np.where(self._paired, self._twin, -1), 1.0)
+        from .kernels import HAVE_NUMBA, fold_difference
+        if HAVE_NUMBA:
+            r, a, b, sign = args
+            return fold_difference(np.ascontiguousarray(M0, float), np.ascontiguousarray(M1, float),
+                                   r, np.asarray(a, np.int64), np.asarray(b, np.int64),
+                                   float(sign), np.ascontiguousarray(step))
+        f0, f1 = self._fold(M0, *args), self._fold(M1, *args)
+        return f0, (f1 - f0) / step[:, None]
+
+    @staticmethod
+    def _fold(M, rows, a, b, sign):
+        """M[rows][:, a] +- M[rows][:, b] (b < 0: nothing added)."""
+        from .kernels import HAVE_NUMBA, fold_columns
+        rows = np.arange(len(M)) if rows is None else np.asarray(rows, np.int64)
+        if HAVE_NUMBA and M.dtype == np.float64:
+            return fold_columns(np.ascontiguousarray(M), rows, np.asarray(a, np.int64),
+                                np.asarray(b, np.int64), float(sign))
+        out = M[np.ix_(rows, a)]
+        has = b >= 0
+        if sign > 0:
+            out[:, has] += M[np.ix_(rows, b[has])]
+        else:
+            out[:, has] -= M[np.ix_(rows, b[has])]
+        return out
+
+    def expand_odd(self, x: np.ndarray) -> np.ndarray:
+        """Odd values of the paired representatives (n_paired, ...) -> all panels:
+        their twins the opposite, panels in the plane 0."""
+        out = np.zeros((self.n,) + x.shape[1:])
+        out[self.reps[self._paired]] = x
+        out[self._twin[self._paired]] = -x
+        return out
+
+    def basis(self) -> np.ndarray:
+        """Rows: the x axis and the plane's cross direction (0, n_z, -n_y), both in the
+        plane (symmetric), and its normal (antisymmetric): every vector is a combination."""
+        ny, nz = self.normal[1], self.normal[2]
+        return np.array([[1.0, 0.0, 0.0], [0.0, nz, -ny], [0.0, ny, nz]])
+
+    def parts(self, v: np.ndarray):
+        """(even, odd) parts (v + R v) / 2, (v - R v) / 2 of vectors ``v`` (k, 3) under
+        the reflection R in the plane."""
+        rv = self._reflect(np.asarray(v, float))
+        return 0.5 * (v + rv), 0.5 * (v - rv)

@@ -37,7 +37,7 @@ from scipy.linalg import lu_factor, lu_solve
 from ironbark_opt.errors import InputError, SolverError
 
 from .influence import influence_matrices
-from .panels import MirrorFold, PanelSet, mirror_map
+from .panels import MirrorFold, PanelSet, mirror_plane
 from .pressure import integrate_forces, pressure_coefficient, surface_gradient
 
 __all__ = ["SubsonicSolver", "PanelResult", "MACH_SUBSONIC_MAX"]
@@ -166,11 +166,15 @@ class SubsonicSolver:
         See :func:`panair.solver.pressure.pressure_coefficient`
         (default second-order, PANAIR's default).
     mirror : bool
-        Only flows without sideslip will be solved: on a full model whose mesh is its
-        own mirror image in the x-z plane (:func:`panair.solver.panels.mirror_map`)
-        the system is set up and factorised for one panel of each mirror pair (half
-        the influence coefficients, an eighth of the LU; the same solution to
-        rounding).  Sideslip then raises InputError, as on a half model.
+        On a full model whose mesh is its own mirror image in a plane through the axis
+        (:func:`panair.solver.panels.mirror_plane`) the system is set up and
+        factorised for one panel of each mirror pair (half the influence
+        coefficients; the same solution to rounding).  In the x-z plane only flows
+        without sideslip will be solved (they are symmetric there: one system, an
+        eighth of the LU); sideslip then raises InputError, as on a half model.  In
+        another plane (3 fins rolled 90 deg) every flow has a part symmetric and a
+        part antisymmetric in it: two systems of half the size (a quarter of the LU),
+        :class:`panair.solver.panels.MirrorFold`.
     """
 
     def __init__(self, panels: PanelSet, mach: float, *, sref: float, lref: float,
@@ -191,8 +195,8 @@ class SubsonicSolver:
         flat, cen, nrm, area = panels.geometry(stretch)
         self._cen_t, self._nrm_t = cen, nrm
         n = panels.n
-        twins = mirror_map(panels) if mirror else None
-        self._fold = MirrorFold(twins) if twins is not None else None
+        plane = mirror_plane(panels) if mirror else None
+        self._fold = MirrorFold(*plane) if plane is not None else None
         rows = self._fold.reps if self._fold is not None else np.arange(n)
         D, S = influence_matrices(cen[rows], flat, nrm, self_index=rows)
         if panels.symmetric:
@@ -218,12 +222,25 @@ class SubsonicSolver:
             raise SolverError(f"Mach {mach}: non-finite influence coefficients "
                               "(coincident or degenerate panels in the mesh)")
         self._lu = RefinedLU(D if self._fold is None else self._fold.fold(D))
-        diag = self._lu.pivots()
-        if diag.min() < 1e-10 * diag.max():
-            raise SolverError(f"Mach {mach}: singular influence matrix "
-                              "(duplicated panels or wrongly oriented networks)")
+        # a mirror plane other than x-z: the antisymmetric part's system as well
+        self._lu_odd = (RefinedLU(self._fold.fold_odd(D))
+                        if self._fold is not None and self._fold.odd else None)
+        for lu in (self._lu, self._lu_odd):
+            diag = lu.pivots() if lu is not None else np.ones(1)
+            if diag.min() < 1e-10 * diag.max():
+                raise SolverError(f"Mach {mach}: singular influence matrix "
+                                  "(duplicated panels or wrongly oriented networks)")
         _, self._cen, self._nrm, self._area = panels.geometry(1.0)
         self._nrm_f = panels.force_normals(self._nrm)      # normals for the force integration
+
+    def _rhs(self, vt, sigma=None):
+        """Right-hand sides (rows of the system) of stretched free streams ``vt`` (k, 3):
+        minus the sources' potential, sigma = -U'.n on the panels (``sigma`` if given)
+        and base wakes."""
+        rhs = -(self._S @ (-(self._nrm_t @ vt.T) if sigma is None else sigma))
+        if self._Sw is not None:
+            rhs -= self._Sw @ -(self._nrm_w @ vt.T)
+        return rhs
 
     def solve(self, alpha, beta=0.0) -> list[PanelResult]:
         """Solve for one or more flow angles.
@@ -242,16 +259,25 @@ class SubsonicSolver:
         """
         alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
                                           np.atleast_1d(np.asarray(beta, float)))
-        _refuse_sideslip(beta, self.panels.symmetric or self._fold is not None)
+        fold = self._fold
+        _refuse_sideslip(beta, self.panels.symmetric or (fold is not None and not fold.odd))
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])     # (k, 3)
-        vt = v / np.array([self.beta_pg, 1.0, 1.0])                           # stretched free stream
+        stretch = np.array([self.beta_pg, 1.0, 1.0])
+        vt = v / stretch                                                      # stretched free stream
         sigma = -(self._nrm_t @ vt.T)                                         # (n, k)
-        rhs = -(self._S @ sigma)
-        if self._Sw is not None:
-            rhs -= self._Sw @ -(self._nrm_w @ vt.T)
-        mu = self._lu.solve(rhs)
-        if self._fold is not None:
-            mu = self._fold.expand(mu)
+        if fold is not None and fold.odd:
+            # mu is linear in the free stream: solved for three unit streams, the x axis
+            # and the plane's cross direction (symmetric in the mirror plane) and its
+            # normal (antisymmetric), and combined for every angle
+            basis = fold.basis()                                              # (3, 3)
+            mu_even = self._lu.solve(self._rhs(basis[:2] / stretch))
+            mu_odd = self._lu_odd.solve(self._rhs(basis[2:] / stretch)[fold.paired])
+            w = basis @ v.T                                                   # (3, k)
+            mu = fold.expand(mu_even @ w[:2]) + fold.expand_odd(mu_odd @ w[2:])
+        else:
+            mu = self._lu.solve(self._rhs(vt, sigma))
+            if fold is not None:
+                mu = fold.expand(mu)
         out = []
         for k in range(len(alpha)):
             g = surface_gradient(mu[:, k], self._cen_t, self._nrm_t, self.panels.neighbours)

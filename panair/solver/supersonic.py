@@ -68,7 +68,7 @@ import numpy as np
 
 from ironbark_opt.errors import InputError, SolverError
 
-from .panels import MirrorFold, PanelSet, mirror_map
+from .panels import MirrorFold, PanelSet, mirror_plane
 from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gradient
 from .subsonic import PanelResult, _free_stream, _refuse_sideslip
 from .nose_correction import TangentCone
@@ -377,11 +377,13 @@ class SupersonicSolver:
         (:mod:`.nose_correction`); ``"linear"``: linear theory everywhere
         (PANAIR's behaviour).
     mirror : bool
-        Flows without sideslip only: when the full model is its own mirror image in
-        the x-z plane (:func:`panair.solver.panels.mirror_map`) the influence rows are
-        computed and the system factorised for one panel of each mirror pair
+        When the full model is its own mirror image in a plane through the axis
+        (:func:`panair.solver.panels.mirror_plane`) the influence rows are computed
+        and the system factorised for one panel of each mirror pair
         (:class:`panair.solver.panels.MirrorFold`; the fin sides are mirror-consistent,
-        :func:`_fin_sides`), the full system's solution to rounding.
+        :func:`_fin_sides`), the full system's solution to rounding: in the x-z plane
+        for flows without sideslip only, in another plane the flow's symmetric and
+        antisymmetric parts as two systems (as :class:`.subsonic.SubsonicSolver`).
     """
 
     def __init__(self, panels: PanelSet, mach: float, *, sref: float, lref: float,
@@ -404,9 +406,9 @@ class SupersonicSolver:
         idx[keep] = np.arange(keep.sum())
         nb = panels.neighbours[keep]
         self._nb = np.where(nb >= 0, idx[np.maximum(nb, 0)], nb)
-        twins = mirror_map(panels) if mirror else None
-        self._fold_twins = idx[twins[keep]] if twins is not None else None
-        self._fold = MirrorFold(self._fold_twins) if twins is not None else None
+        plane = mirror_plane(panels) if mirror else None
+        self._fold_twins = idx[plane[0][keep]] if plane is not None else None
+        self._fold = MirrorFold(self._fold_twins, plane[1]) if plane is not None else None
         flat, cen, nrm, area = panels.geometry(1.0 / self.B)
         flat, cen, nrm = flat[keep], cen[keep], nrm[keep]
         _, _, g1 = panel_frames(flat, nrm)
@@ -437,6 +439,8 @@ class SupersonicSolver:
             x_phys = cen[:, 0] * self.B
             self._nb = cut_wake_neighbours(self._nb, np.c_[x_phys, cen[:, 1:]], sides[0],
                                            sheets.x_root_te, sides[1] >= 0)
+            if self._fold is not None and self._fold.odd:
+                self._fold = None      # sheets' wake rows: x-z mirror folds only (solved unfolded)
             if self._fold is not None:
                 ext = sheet_twins(self._fold_twins, cen_w, nrm_w,
                                   1e-9 * float(np.ptp(cen, axis=0).max()))
@@ -460,22 +464,41 @@ class SupersonicSolver:
             mirror=panels.symmetric, rows=rows[np.argsort(-cen[rows, 0], kind="stable")])
         if bad_row >= 0:
             raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
-        if self._fold is not None:
-            phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
-        A = (phi1 - phi0) / eps[rows, None]
-        del phi1
-        if sheets is not None:           # the sheets' rows: the wake conditions
+        if sheets is not None:
+            # the wake conditions replace the sheets' rows (wake_rows): one system, folded
+            # in the x-z plane only (see the sheets' twins above)
+            if self._fold is not None:
+                phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
+            A = (phi1 - phi0) / eps[rows, None]
+            del phi1
             pos = (lambda j: int(self._fold.rep_of[j])) if self._fold is not None else int
             wake_rows(A, phi0, m, sheets, pos, idx)
-        self._phi0 = phi0
-        try:
-            self._lu = CausalLU(A, cen[rows, 0])
-            diag = self._lu.pivots()
-        except SolverError:
-            diag = np.zeros(1)
-        if diag.min() < 1e-8 * diag.max():
-            raise SolverError(f"Mach {mach}: singular supersonic influence matrix "
-                              "(Mach-cone coincidences or duplicated panels)")
+            systems = [(phi0, A, rows)]
+            phi1 = None
+        elif self._fold is None:
+            # (potential, influence matrix, rows) of the system, or of the mirror fold's two
+            systems = [(phi0, (phi1 - phi0) / eps[rows, None], rows)]
+        else:
+            fold = self._fold
+            systems = [fold.fold_difference(phi0, phi1, rows, eps[rows]) + (rows,)]
+            if fold.odd:       # the antisymmetric part's system (mirror plane not x-z)
+                systems.append(fold.fold_difference(phi0, phi1, rows, eps[rows], odd=True)
+                               + (rows[fold.paired],))
+        del phi0, phi1
+        self._phi0, self._lu = [], []
+        while systems:
+            f0, A, r = systems.pop(0)
+            self._phi0.append(f0)
+            try:
+                lu = CausalLU(A, cen[r, 0])
+                diag = lu.pivots()
+            except SolverError:
+                lu, diag = None, np.zeros(1)
+            del A
+            if diag.min() < 1e-8 * diag.max():
+                raise SolverError(f"Mach {mach}: singular supersonic influence matrix "
+                                  "(Mach-cone coincidences or duplicated panels)")
+            self._lu.append(lu)
         _, c_phys, n_phys, a_phys = panels.geometry(1.0)
         self._cen, self._nrm, self._area = c_phys[keep], n_phys[keep], a_phys[keep]
         self._nrm_f = panels.force_normals(n_phys)[keep]   # normals for the force integration
@@ -535,16 +558,28 @@ class SupersonicSolver:
         """
         alpha, beta = np.broadcast_arrays(np.atleast_1d(np.asarray(alpha, float)),
                                           np.atleast_1d(np.asarray(beta, float)))
-        _refuse_sideslip(beta, self.panels.symmetric or self._fold is not None)
+        fold = self._fold
+        _refuse_sideslip(beta, self.panels.symmetric or (fold is not None and not fold.odd))
         v = np.array([_free_stream(a, b) for a, b in zip(alpha, beta)])
-        vt = v / np.array([self.B, 1.0, 1.0])
+        stretch = np.array([self.B, 1.0, 1.0])
+        vt = v / stretch
         rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
-        n_all = len(self._phi0[0]) if self._fold is None else len(self._fold.rep_of)
-        full = np.vstack([rhs, np.zeros((n_all - self._m, len(v)))])   # sheets: zero
-        if self._fold is None:
-            phi = (self._phi0 @ self._lu.solve(full))[:self._m]
-        else:
-            phi = self._fold.expand(self._phi0 @ self._lu.solve(full[self._fold.reps]))[:self._m]
+        if self.wake_cells:
+            # wake sheets: their unknowns follow the panels', their right-hand side 0
+            n_all = len(self._phi0[0]) if fold is None else len(fold.rep_of)
+            full = np.vstack([rhs, np.zeros((n_all - self._m, len(v)))])
+            if fold is None:
+                phi = (self._phi0[0] @ self._lu[0].solve(full))[:self._m]
+            else:
+                phi = fold.expand(self._phi0[0] @ self._lu[0].solve(full[fold.reps]))[:self._m]
+        elif fold is None:
+            phi = self._phi0[0] @ self._lu[0].solve(rhs)
+        elif not fold.odd:
+            phi = fold.expand(self._phi0[0] @ self._lu[0].solve(rhs[fold.reps]))
+        else:   # the free stream's parts symmetric and antisymmetric in the mirror plane
+            even, odd = (-(self._nrm_t @ (part / stretch).T) for part in fold.parts(v))
+            phi = (fold.expand(self._phi0[0] @ self._lu[0].solve(even[fold.reps]))
+                   + fold.expand_odd(self._phi0[1] @ self._lu[1].solve(odd[fold.reps][fold.paired])))
         nu = self._nrm_t * np.array([-1.0, 1.0, 1.0])
         out = []
         # fin tip caps are solved (the two sides of a fin communicate through them)

@@ -8,7 +8,7 @@ import pytest
 from ironbark_opt.errors import InputError
 from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
 from panair.solver import build_panels, make_solver
-from panair.solver.panels import MirrorFold, mirror_map
+from panair.solver.panels import MirrorFold, mirror_map, mirror_plane
 
 OPT = MeshOptions(n_theta=12, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
 
@@ -129,3 +129,49 @@ def test_folded_supersonic_solve_is_the_full_solve(mach):
         np.testing.assert_allclose(h.cp, f.cp, rtol=0, atol=1e-10 * np.nanmax(np.abs(f.cp)))
     with pytest.raises(InputError, match="sideslip"):
         half_solver.solve(0.0, np.radians(2.0))
+
+
+def test_mirror_plane_through_a_fin():
+    """3 fins rolled 90 deg are not their own mirror image in the x-z plane, but in the
+    plane through a fin (and the seam opposite it): mirror_plane finds it, the twins map
+    every panel's centroid onto its reflection, and 4 fins rolled 10 deg (planes at 10
+    and 55 deg) too; a layout with no mirror plane in its mesh gives None."""
+    for count, roll in ((3, 90.0), (4, 10.0), (3, 17.0)):
+        panels = _panels(count, roll)
+        assert mirror_map(panels) is None
+        found = mirror_plane(panels)
+        assert found is not None
+        p, normal = found
+        assert abs(normal[0]) == 0.0 and np.linalg.norm(normal) == pytest.approx(1.0)
+        np.testing.assert_array_equal(p[p], np.arange(panels.n))
+        c = panels.corners.mean(axis=1)
+        mirrored = c - 2.0 * (c @ normal)[:, None] * normal
+        size = np.ptp(panels.corners.reshape(-1, 3), axis=0).max()
+        assert np.abs(c[p] - mirrored).max() < 1e-12 * size
+        fold = MirrorFold(p, normal)
+        assert fold.odd and panels.n / 2 <= len(fold.reps) < 0.55 * panels.n
+    assert mirror_plane(_panels(3, 0.0))[1].tolist() == [0.0, 1.0, 0.0]
+
+
+@pytest.mark.parametrize("roll,mach", [(90.0, 0.3), (90.0, 0.8), (17.0, 0.6), (90.0, 1.6),
+                                       (17.0, 2.5)])
+def test_folded_solve_in_another_plane_is_the_full_solve(roll, mach):
+    """Mirror plane not x-z (3 fins rolled 90 or 17 deg): the flow in the x-z plane has
+    parts symmetric and antisymmetric in the mirror plane, solved as two folded systems;
+    together they are the full system's solution to rounding (subsonic also in sideslip,
+    which the odd part makes possible)."""
+    panels = _panels(3, roll) if mach < 1 else build_panels(mesh_rocket(
+        RocketGeometry(BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5])),
+                       (FinGeometry(3, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.radians(roll)),)),
+        options=OPT.for_mach(mach)))
+    alpha = np.radians([0.0, 4.0, 12.0])
+    beta = np.radians([0.0, 2.0, 0.0]) if mach < 1 else 0.0
+    full = make_solver(panels, mach, sref=np.pi / 4, lref=1.0, xref=5.0).solve(alpha, beta)
+    solver = make_solver(panels, mach, sref=np.pi / 4, lref=1.0, xref=5.0, mirror=True)
+    assert solver._fold is not None and solver._fold.odd
+    half = solver.solve(alpha, beta)
+    for name in ("CA", "CY", "CN", "Cm", "Cn"):
+        f, h = (np.array([getattr(r, name) for r in res]) for res in (full, half))
+        assert np.abs(h - f).max() < 1e-10 * max(np.abs(f).max(), 1e-3), name
+    for f, h in zip(full, half):             # (NaN on the panels not solved: bases, wakes)
+        np.testing.assert_allclose(h.cp, f.cp, rtol=0, atol=1e-10 * np.nanmax(np.abs(f.cp)))

@@ -199,5 +199,11 @@ def test_diverged_samples_are_refused(setup, model, monkeypatch):
         out["apogee_agl"] = apo
         return out
     monkeypatch.setattr(ex, "fly_samples", broken)
-    with pytest.raises(SolverError, match=r"1 of 3 Monte Carlo samples diverged \(sample 1"):
+    with pytest.raises(SolverError, match=r"1 of 3 Monte Carlo samples reached no apogee or diverged \(sample 1"):
         montecarlo(setup, spec_from_dict(SMALL), 3, progress=False, model=model)
+    # an unstable rocket flown on purpose (--allow-unstable): the sample is left out, said and counted
+    with pytest.warns(UserWarning, match="1 of 3 samples reached no apogee"):
+        d = montecarlo(setup, spec_from_dict(SMALL), 3, progress=False, model=model, allow_failed=True)
+    assert d.extra["samples_failed"] == 1
+    good = [a for i, a in enumerate(d._table["apogee_agl_m"]) if i != 1]
+    assert d.stats["apogee_agl_m"]["mean"] == pytest.approx(np.mean(good), rel=1e-12)
