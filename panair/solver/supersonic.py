@@ -73,7 +73,7 @@ from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gra
 from .subsonic import PanelResult, _free_stream, _refuse_sideslip
 from .nose_correction import TangentCone
 from .supersonic_influence import panel_frames, source_potential_pair
-from .supersonic_wake import (cut_wake_neighbours, fin_plane as _fin_plane, sheet_geometry,
+from .supersonic_wake import (cut_wake_neighbours, fin_plane as _fin_plane, folded_wake_systems, sheet_geometry,
                               sheet_sides, sheet_twins, wake_rows, wake_sheets)
 
 __all__ = ["SupersonicSolver", "MACH_SUPERSONIC_MIN", "MACH_SUPERSONIC_MAX", "G1_MIN"]
@@ -439,12 +439,13 @@ class SupersonicSolver:
             x_phys = cen[:, 0] * self.B
             self._nb = cut_wake_neighbours(self._nb, np.c_[x_phys, cen[:, 1:]], sides[0],
                                            sheets.x_root_te, sides[1] >= 0)
-            if self._fold is not None and self._fold.odd:
-                self._fold = None      # sheets' wake rows: x-z mirror folds only (solved unfolded)
+            self._sheet_twins = None
             if self._fold is not None:
+                fold = self._fold
                 ext = sheet_twins(self._fold_twins, cen_w, nrm_w,
-                                  1e-9 * float(np.ptp(cen, axis=0).max()))
-                self._fold = MirrorFold(ext) if ext is not None else None
+                                  1e-9 * float(np.ptp(cen, axis=0).max()), reflect=fold._reflect)
+                self._fold = MirrorFold(ext, fold.normal) if ext is not None else None
+                self._sheet_twins = ext
             flat, cen, nrm = (np.concatenate([a, b]) for a, b in
                               ((flat, fl_w), (cen, cen_w), (nrm, nrm_w)))
             scale = np.concatenate([scale, scale_w])
@@ -464,9 +465,14 @@ class SupersonicSolver:
             mirror=panels.symmetric, rows=rows[np.argsort(-cen[rows, 0], kind="stable")])
         if bad_row >= 0:
             raise SolverError(f"Mach {mach}: non-finite supersonic influence coefficients")
-        if sheets is not None:
+        if sheets is not None and self._fold is not None and self._fold.odd:
+            # another mirror plane: the even and odd systems, each with the wake conditions
+            systems = [(f0, A, rows if k == 0 else rows[self._fold.paired]) for k, (f0, A) in
+                       enumerate(folded_wake_systems(self._fold, self._sheet_twins, phi0, phi1, eps,
+                                                     m, sheets, idx))]
+        elif sheets is not None:
             # the wake conditions replace the sheets' rows (wake_rows): one system, folded
-            # in the x-z plane only (see the sheets' twins above)
+            # in the x-z plane
             if self._fold is not None:
                 phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
             A = (phi1 - phi0) / eps[rows, None]
@@ -567,11 +573,17 @@ class SupersonicSolver:
         if self.wake_cells:
             # wake sheets: their unknowns follow the panels', their right-hand side 0
             n_all = len(self._phi0[0]) if fold is None else len(fold.rep_of)
-            full = np.vstack([rhs, np.zeros((n_all - self._m, len(v)))])
+
+            def pad(r):
+                return np.vstack([r, np.zeros((n_all - self._m, r.shape[1]))])
             if fold is None:
-                phi = (self._phi0[0] @ self._lu[0].solve(full))[:self._m]
+                phi = (self._phi0[0] @ self._lu[0].solve(pad(rhs)))[:self._m]
+            elif not fold.odd:
+                phi = fold.expand(self._phi0[0] @ self._lu[0].solve(pad(rhs)[fold.reps]))[:self._m]
             else:
-                phi = fold.expand(self._phi0[0] @ self._lu[0].solve(full[fold.reps]))[:self._m]
+                even, odd = (pad(-(self._nrm_t @ (part / stretch).T)) for part in fold.parts(v))
+                phi = (fold.expand(self._phi0[0] @ self._lu[0].solve(even[fold.reps]))
+                       + fold.expand_odd(self._phi0[1] @ self._lu[1].solve(odd[fold.reps][fold.paired])))[:self._m]
         elif fold is None:
             phi = self._phi0[0] @ self._lu[0].solve(rhs)
         elif not fold.odd:

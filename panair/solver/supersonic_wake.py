@@ -194,14 +194,17 @@ def cut_wake_neighbours(nb, cen, sides_recv, fins_x_te, is_fin):
     return out
 
 
-def sheet_twins(p_panels, cen_sheet, nrm_sheet, tol) -> np.ndarray | None:
-    """Mirror twins (x-z plane) of the kept panels followed by the sheet faces:
-    ``p_panels`` the panels' own twins (kept indexing), the faces matched by mirrored
-    centroid and normal; None if a face has no twin."""
+def sheet_twins(p_panels, cen_sheet, nrm_sheet, tol, reflect=None) -> np.ndarray | None:
+    """Mirror twins of the kept panels followed by the sheet faces: ``p_panels`` the
+    panels' own twins (kept indexing), the faces matched by mirrored centroid and
+    normal (``reflect``: the mirror plane's reflection of vectors (k, 3), default the
+    x-z plane's); None if a face has no twin."""
     from scipy.spatial import cKDTree
-    flip = np.array([1.0, -1.0, 1.0])
+    if reflect is None:
+        flip = np.array([1.0, -1.0, 1.0])
+        reflect = lambda v: v * flip          # noqa: E731
     key = np.hstack([cen_sheet, nrm_sheet * tol * 1e3])
-    dist, q = cKDTree(key).query(np.hstack([cen_sheet * flip, nrm_sheet * flip * tol * 1e3]))
+    dist, q = cKDTree(key).query(np.hstack([reflect(cen_sheet), reflect(nrm_sheet) * tol * 1e3]))
     if not np.all(dist <= 10 * tol) or not np.array_equal(q[q], np.arange(len(q))):
         return None
     m = len(p_panels)
@@ -259,3 +262,59 @@ def wake_rows(A, Phi, m: int, sheets: WakeSheets, rowpos, kept_index):
             tp, tn = (rowpos(int(kept_index[t])) for t in sheets.te[c])
             A[pair[1]] = (Phi[ru] - Phi[rl]) - (Phi[tp] - Phi[tn])
     return sorted({r for p in done for r in p})
+
+
+def folded_wake_systems(fold, twins, Phi0, Phi1, step, m: int, sheets: WakeSheets, kept_index):
+    """The even and odd systems of a mirror fold in a plane other than x-z
+    (:class:`panair.solver.panels.MirrorFold`, ``fold.odd``) with the wake conditions
+    of :func:`wake_rows`: ``[(Phi_even, A_even), (Phi_odd, A_odd)]``.
+
+    ``Phi0``, ``Phi1``: the potential rows of the representatives at the collocation
+    points and their offset points (full columns); ``twins``: every unknown's mirror
+    twin.  A row of a non-representative is its twin's row with the columns mirrored
+    (the mesh is its own mirror image).  Each cell's two conditions (mass-flux
+    continuity, the trailing-edge potential jump) replace its faces' representatives'
+    rows in both systems; a mirror pair of cells shares those rows (its conditions
+    fold onto the same equations).  A cell that is its own mirror image (a fin in
+    the plane; faces u and l twins) keeps the mass-flux row in the even system, where
+    the jump of a symmetric flow is zero, and the jump row in the odd one, where the
+    two faces' fluxes cancel."""
+    reps = fold.reps
+    E0, EA = fold.fold_difference(Phi0, Phi1, reps, step[reps])
+    O0, OA = fold.fold_difference(Phi0, Phi1, reps, step[reps], odd=True)
+    odd_pos = -np.ones(len(reps), np.int64)
+    odd_pos[fold.paired] = np.arange(int(fold.paired.sum()))
+
+    def full(i, influence: bool):
+        """Row i of the full potential (or influence) matrix."""
+        j = i if twins[i] >= i else int(twins[i])
+        r = (Phi1[j] - Phi0[j]) / step[j] if influence else Phi0[j]
+        return r if j == i else r[twins]
+
+    n_cells, done = sheets.n_cells, set()
+    for c in range(n_cells):
+        u, lo = m + c, m + n_cells + c
+        ru, rl = int(fold.rep_of[u]), int(fold.rep_of[lo])
+        pair = (min(ru, rl), max(ru, rl))
+        if pair in done:
+            continue
+        done.add(pair)
+        flux = (full(u, True) + full(lo, True))[None, :]
+        tp, tn = (int(kept_index[t]) for t in sheets.te[c])
+        jump = (full(u, False) - full(lo, False) - full(tp, False) + full(tn, False))[None, :]
+        EA[ru] = fold.fold(flux)[0]
+        if ru != rl:
+            EA[rl] = fold.fold(jump)[0]
+            for r, cond in ((ru, flux), (rl, jump)):
+                if odd_pos[r] >= 0:
+                    OA[odd_pos[r]] = _odd_row(fold, cond)
+        elif odd_pos[ru] >= 0:
+            OA[odd_pos[ru]] = _odd_row(fold, jump)
+    return [(E0, EA), (O0, OA)]
+
+
+def _odd_row(fold, row):
+    """One full row (1, n) folded into the odd system's columns (n_paired,)."""
+    reps, paired = fold.reps, fold.paired
+    a, b = reps[paired], fold._twin[paired]
+    return row[0, a] - row[0, b]

@@ -109,6 +109,26 @@ def test_mirror_fold_with_wake_sheets_is_the_full_solve():
     np.testing.assert_allclose(out[1], out[0], rtol=1e-8, atol=1e-10)
 
 
+@pytest.mark.parametrize("roll_deg", [90.0, 30.0])
+def test_fold_in_another_plane_with_wake_sheets_is_the_full_solve(roll_deg):
+    """3 fins rolled 90 deg (OpenRocket's default) or 30 deg have no x-z mirror plane but
+    one through a fin: its even and odd systems, each with the wake conditions
+    (supersonic_wake.folded_wake_systems), give the full solve; a fin lies in the
+    plane, so its cells are their own mirror images."""
+    body = BodyGeometry(np.array([0.0, 2.84, 10.0]), np.array([0.0, 0.5, 0.5]))
+    fins = (FinGeometry(3, 1.0, 0.6, 0.6, 0.4, X_TE - 1.0, 0.04, roll=np.radians(roll_deg)),)
+    p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=False,
+                                 options=_opt(n_span=2, n_chord=8)), symmetric=False)
+    out = []
+    for mirror in (False, True):
+        s = make_solver(p, MACH, sref=np.pi / 4, lref=1.0, xref=0.0, mirror=mirror)
+        assert s.wake_cells > 0
+        if mirror:
+            assert s._fold is not None and s._fold.odd
+        out.append([(r.CN, r.Cm, r.CY, r.Cn) for r in s.solve(np.radians([0.0, 2.0, 5.0]))])
+    np.testing.assert_allclose(out[1], out[0], rtol=1e-8, atol=1e-10)
+
+
 def test_sheet_stops_where_the_body_grows_past_it():
     """A flare behind the fins (radius 0.5 -> 0.6 cal from 8 to 9 cal) would put the
     sheet's root inside the body: its innermost strip ends where the body reaches it
