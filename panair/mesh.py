@@ -91,16 +91,13 @@ class BodyGeometry:
         x, r = self.x, self.r
         out, i, n = [], 0, len(x)
         while i < n - 1:
-            if not (x[i + 1] > x[i] and r[i + 1] < r[i]):
-                i += 1
-                continue
-            j = i
+            j = i                                   # the contracting run from station i
             while j < n - 1 and x[j + 1] > x[j] and r[j + 1] < r[j]:
                 j += 1
             run = SimpleNamespace(fore_radius=float(r[i]), aft_radius=float(r[j]), length=float(x[j] - x[i]))
-            if boattail_separation_fraction(run) >= 1.0:
+            if j > i and boattail_separation_fraction(run) >= 1.0:
                 out.append((float(x[i]), float(x[j]), float(r[i]), float(r[j])))
-            i = j
+            i = max(j, i + 1)
         return out
 
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from ironbark_opt import params
 from ironbark_opt.dynamics.constants import G0
-from ironbark_opt.dynamics.integrator import grid_fractions, phase_trajectory
+from ironbark_opt.dynamics.integrator import _splitting, grid_fractions, phase_trajectory
 from ironbark_opt.errors import InputError, SolverError
 
 #: |lambda| dt allowed for RK4 (its stability region reaches 2.78 on the real
@@ -131,11 +131,9 @@ class GridMixin:
         cache = self.__dict__.setdefault("_jac_cache", {})
         if f.name() not in cache:
             xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
-            out = f(xs, ts, ps)
-            xdot = out[0]
-            if "c_roll" in f.name_out():          # advanced exactly by the integrator
-                forcing = out[3] if "f_roll" in f.name_out() else 0
-                xdot = xdot - ca.vertcat(ca.SX.zeros(10), out[2] * xs[10] + forcing, ca.SX.zeros(2))
+            # without the roll equation's damping and forcing: the integrator advances
+            # them exactly (integrator._splitting, as rk4_step)
+            xdot = _splitting(f, ps)[0](xs, ts)
             cache[f.name()] = ca.Function(f"jac_{f.name()}", [xs, ts, ps], [ca.jacobian(xdot, xs)])
         jac = cache[f.name()]
         x = np.atleast_2d(np.asarray(x, dtype=float).T).T

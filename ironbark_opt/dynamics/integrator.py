@@ -23,22 +23,21 @@ def _splitting(rhs: ca.Function, p):
     right-hand side without the roll equation's damping and forcing terms, and that
     linear roll equation advanced exactly over ``h`` (coefficients frozen)."""
     nx = rhs.size1_in(0)
-    split = "c_roll" in rhs.name_out()
+    split = "c_roll" in rhs.name_out()          # with it, rhs.build gives f_roll too
     if split:
         e = ca.DM.zeros(nx)
         e[10] = 1
-        forced = "f_roll" in rhs.name_out()
 
         def f(xx, tt):
             out = rhs(xx, tt, p)
-            return out[0] - e * (out[2] * xx[10] + (out[3] if forced else 0))
+            return out[0] - e * (out[2] * xx[10] + out[3])
 
         def damp(xx, tt, h):
             out = rhs(xx, tt, p)
             z = out[2] * h
             # w(h) - w(0) = h phi1(z) (c w + f), phi1(z) = (e^z - 1)/z (z <= 0; series near 0)
             phi1 = ca.if_else(ca.fabs(z) < 1e-6, 1 + z / 2, ca.expm1(z) / ca.if_else(z == 0, 1, z))
-            return xx + e * h * phi1 * (out[2] * xx[10] + (out[3] if forced else 0))
+            return xx + e * h * phi1 * (out[2] * xx[10] + out[3])
     else:
         def f(xx, tt):
             return rhs(xx, tt, p)[0]

@@ -570,28 +570,20 @@ class SupersonicSolver:
         stretch = np.array([self.B, 1.0, 1.0])
         vt = v / stretch
         rhs = -(self._nrm_t @ vt.T)                      # wetted-side mass flux to impose
-        if self.wake_cells:
-            # wake sheets: their unknowns follow the panels', their right-hand side 0
-            n_all = len(self._phi0[0]) if fold is None else len(fold.rep_of)
+        # wake sheets' unknowns follow the panels' (m), their right-hand side 0
+        n_all = len(self._phi0[0]) if fold is None else len(fold.rep_of)
 
-            def pad(r):
-                return np.vstack([r, np.zeros((n_all - self._m, r.shape[1]))])
-            if fold is None:
-                phi = (self._phi0[0] @ self._lu[0].solve(pad(rhs)))[:self._m]
-            elif not fold.odd:
-                phi = fold.expand(self._phi0[0] @ self._lu[0].solve(pad(rhs)[fold.reps]))[:self._m]
-            else:
-                even, odd = (pad(-(self._nrm_t @ (part / stretch).T)) for part in fold.parts(v))
-                phi = (fold.expand(self._phi0[0] @ self._lu[0].solve(even[fold.reps]))
-                       + fold.expand_odd(self._phi0[1] @ self._lu[1].solve(odd[fold.reps][fold.paired])))[:self._m]
-        elif fold is None:
-            phi = self._phi0[0] @ self._lu[0].solve(rhs)
+        def pad(r):
+            return r if n_all == self._m else np.vstack([r, np.zeros((n_all - self._m, r.shape[1]))])
+        if fold is None:
+            phi = self._phi0[0] @ self._lu[0].solve(pad(rhs))
         elif not fold.odd:
-            phi = fold.expand(self._phi0[0] @ self._lu[0].solve(rhs[fold.reps]))
+            phi = fold.expand(self._phi0[0] @ self._lu[0].solve(pad(rhs)[fold.reps]))
         else:   # the free stream's parts symmetric and antisymmetric in the mirror plane
-            even, odd = (-(self._nrm_t @ (part / stretch).T) for part in fold.parts(v))
+            even, odd = (pad(-(self._nrm_t @ (part / stretch).T)) for part in fold.parts(v))
             phi = (fold.expand(self._phi0[0] @ self._lu[0].solve(even[fold.reps]))
                    + fold.expand_odd(self._phi0[1] @ self._lu[1].solve(odd[fold.reps][fold.paired])))
+        phi = phi[:self._m]
         nu = self._nrm_t * np.array([-1.0, 1.0, 1.0])
         out = []
         # fin tip caps are solved (the two sides of a fin communicate through them)
