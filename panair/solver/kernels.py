@@ -284,7 +284,7 @@ def supersonic_source(points, cen, rho, q0, normal, e1, e2, g1, sg, e1x_nx, uk, 
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def supersonic_source_pair(p0, p1, mirror, rows, recv, src_fin, src_side, cen, rho, q0, normal,
+def supersonic_source_pair(p0, p1, mirror, rows, recv, recv_m, src_fin, src_side, cen, rho, q0, normal,
                            e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all, eq_all, nup_all,
                            nuq_all, a_all, out0, out1):
     """The two potentials of the supersonic solver in one pass: at the points ``p0``
@@ -292,8 +292,10 @@ def supersonic_source_pair(p0, p1, mirror, rows, recv, src_fin, src_side, cen, r
     a source-receiver pair separated by a fin (``recv`` (n_fins, m) receiver side,
     ``src_fin`` (n,) the source's fin or -1, ``src_side`` (n,) its side; see
     :func:`panair.solver.supersonic._fin_sides`), plus with ``mirror`` the value at
-    the mirror image (x, -y, z) — the same operations in the same order as
-    :func:`supersonic_source` then ``out[shadow] = 0`` then ``out += mirror``.
+    the mirror image (x, -y, z), 0 for a pair separated by a fin there (``recv_m``
+    the mirror images' sides, :func:`panair.solver.supersonic._mirror_sides`) — the
+    same operations in the same order as :func:`supersonic_source` then
+    ``out[shadow] = 0`` then ``out += mirror`` (its shadowed pairs 0).
 
     Rows are computed in the order ``rows``; the first row with a non-finite value
     stops the pass and is returned (its system has no solution: the caller raises),
@@ -315,9 +317,10 @@ def supersonic_source_pair(p0, p1, mirror, rows, recv, src_fin, src_side, cen, r
         for j in range(n):
             f = src_fin[j]
             shadow = f >= 0 and recv[f, i] * src_side[j] < 0
+            shadow_m = f >= 0 and recv_m[f, i] * src_side[j] < 0
             for k in range(npts):
                 val[k] = 0.0
-                if k < 2 and shadow:
+                if (k < 2 and shadow) or (k >= 2 and shadow_m):
                     continue
                 px, py, pz = pts[k, 0], pts[k, 1], pts[k, 2]
                 # bounding sphere outside the upstream Mach cone (45 deg scaled): no influence

@@ -227,7 +227,10 @@ def source_potential_pair(p0: np.ndarray, p1: np.ndarray, flat: np.ndarray, norm
     ``phi0`` at ``p0`` and ``phi1`` at ``p1`` (m, 3), each :func:`source_potential`
     with the fin-separated pairs set to 0 (``sides`` = (recv, src_fin, src_side) of
     :func:`panair.solver.supersonic._fin_sides`, or None) and, with ``mirror``, plus
-    :func:`source_potential` at the mirror image (x, -y, z) of the points.
+    :func:`source_potential` at the mirror image (x, -y, z) of the points, with the
+    pairs separated there set to 0 (a fourth element of ``sides``: the mirror
+    images' sides (n_fins, m), :func:`panair.solver.supersonic._mirror_sides`;
+    without it none are).
 
     Rows are computed in the order ``rows`` (default 0 .. m-1); the pass stops at the
     first row with a non-finite value.
@@ -242,23 +245,29 @@ def source_potential_pair(p0: np.ndarray, p1: np.ndarray, flat: np.ndarray, norm
     m, n = len(p0), len(flat)
     if sides is None:
         sides = (np.zeros((0, m)), -np.ones(n, np.int64), np.zeros(n))
-    recv, src_fin, src_side = sides
+    recv, src_fin, src_side = sides[:3]
+    recv_m = sides[3] if len(sides) > 3 else np.zeros_like(recv)
     rows = np.arange(m) if rows is None else np.asarray(rows, np.int64)
     if kernels.use_compiled(backend):
         phi0, phi1 = np.empty((m, n)), np.empty((m, n))
         bad = kernels.supersonic_source_pair(
             np.ascontiguousarray(p0, float), np.ascontiguousarray(p1, float), bool(mirror), rows,
-            np.ascontiguousarray(recv, float), np.ascontiguousarray(src_fin, np.int64),
+            np.ascontiguousarray(recv, float), np.ascontiguousarray(recv_m, float),
+            np.ascontiguousarray(src_fin, np.int64),
             np.ascontiguousarray(src_side, float), *_prepare(flat, normal), phi0, phi1)
         return phi0, phi1, int(bad)
-    shadow = ((src_fin[None, :] >= 0)
-              & (recv[np.maximum(src_fin, 0)].T * src_side[None, :] < 0)) if len(recv) else False
+    def mask(r):
+        return ((src_fin[None, :] >= 0)
+                & (r[np.maximum(src_fin, 0)].T * src_side[None, :] < 0)) if len(r) else False
+    shadow, shadow_m = mask(recv), mask(recv_m)
     out = []
     for pts in (p0, p1):
         val = source_potential(pts, flat, normal, backend=backend)
         val[shadow] = 0.0
         if mirror:
-            val += source_potential(pts * np.array([1.0, -1.0, 1.0]), flat, normal, backend=backend)
+            val_m = source_potential(pts * np.array([1.0, -1.0, 1.0]), flat, normal, backend=backend)
+            val_m[shadow_m] = 0.0
+            val += val_m
         out.append(val)
     bad = np.nonzero(~np.all(np.isfinite(out[0]) & np.isfinite(out[1]), axis=1)[rows])[0]
     return out[0], out[1], int(rows[bad[0]]) if len(bad) else -1

@@ -223,13 +223,17 @@ def sheet_geometry(sheets: WakeSheets, B: float):
     return flat, cen, nrm, np.minimum(np.sqrt(np.maximum(area, 1e-300)), shortest)
 
 
-def sheet_sides(sides, sheets: WakeSheets):
+def sheet_sides(sides, sheets: WakeSheets, recv_sheet=None):
     """The fin-side assignment (recv, src_fin, src_side) of the kept panels extended
     by the sheet faces: a face acts on, and receives from, its own side of its fin's
-    plane only (as the fin's faces)."""
+    plane only (as the fin's faces); ``recv_sheet`` (n_fins, 2 w): the faces' sides
+    as receivers if given (:func:`panair.solver.supersonic._receiver_sides`, which
+    also sides them for a coplanar fin), else their own fin's only."""
     recv, src_fin, src_side = sides
     rw = np.zeros((len(recv), len(sheets.fin)))
     rw[sheets.fin, np.arange(len(sheets.fin))] = sheets.side
+    if recv_sheet is not None:
+        rw = recv_sheet
     return (np.hstack([recv, rw]), np.concatenate([src_fin, sheets.fin]),
             np.concatenate([src_side, sheets.side]))
 
