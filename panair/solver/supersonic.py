@@ -73,6 +73,7 @@ from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gra
 from .subsonic import PanelResult, _free_stream, _refuse_sideslip
 from .nose_correction import TangentCone
 from .supersonic_influence import panel_frames, source_potential_pair
+from .supersonic_diaphragm import diaphragm_sheets, merge_sheets
 from .supersonic_wake import (cut_wake_neighbours, fin_plane as _fin_plane, folded_wake_systems, sheet_geometry,
                               sheet_sides, sheet_twins, wake_rows, wake_sheets)
 
@@ -94,6 +95,18 @@ model's size and more)."""
 WAKE_SHEETS = True
 """Fin wakes behind which the body continues are part of the solve
 (:mod:`.supersonic_wake`); False: the wall model before session 10 (for comparison)."""
+THIN_WING = False
+"""True: the thin-wing model of a fin pair in one plane, both parts of it —
+coplanar partners sided (:func:`_fin_sides`) and diaphragms ahead of subsonic leading
+edges (:mod:`.supersonic_diaphragm`).  It matches exact linear theory on a flat delta
+wing on a thin body (tests/unit/test_panair_delta_wing.py: supersonic leading edge
+-15 / -11 % -> within 0.5 %, subsonic -35 / -30 % -> converging to within 1-2 % of
+Stewart's value), but raises the supersonic CN-alpha of Allen's fin pairs on a
+1-calibre body (span 0.5-3 cal), already above the tunnel's: sided partners alone
+fin 10 Mach 1.2 / 1.6 / 2.0 +34 / +24 / +16 % -> +52 / +32 / +23 %, fin 12 Mach 1.2
++8 -> +16 %, past the regression bounds of tests/validation/test_allen_finbody.py
+(the source model passes a partner's influence straight through a thick body, where
+the flow goes around it).  Off by default until that is resolved."""
 G1_MIN = 0.05
 """Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
 panel is (nearly) Mach-inclined and linear theory has no valid solution."""
@@ -215,14 +228,15 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     make the system singular.  Tip-region communication around the fin tip
     goes through the tip cap.
 
-    A fin's coplanar partner (the fin opposite it, 180 deg in roll: one plane through
-    the axis, :func:`_coplanar`) is part of the same thin surface: its faces are
-    receivers on the side they face.  Without that, near a thin body (a flat wing:
-    two fins on a thin body), a source on the lower face of one fin acted on the
-    upper face of the other and cancelled most of the upper face's own source there
-    (the two nearly coincide): a flat delta wing with a supersonic leading edge had
-    CN-alpha 11-15 % below exact linear theory (4 / B), within 1 % with the partner
-    sided (tests/unit/test_panair_delta_wing.py).  In thin-wing theory the upper
+    With THIN_WING (off by default, see there): a fin's coplanar partner (the fin
+    opposite it, 180 deg in roll: one plane through the axis, :func:`_coplanar`) is
+    part of the same thin surface: its faces are receivers on the side they face, and
+    the plane through both splits the whole body (not only the fin's half).  Without
+    that, near a thin body (a flat wing: two fins on a thin body), a source on the
+    lower face of one fin acts on the upper face of the other and cancels most of the
+    upper face's own source there (the two nearly coincide): a flat delta wing with a
+    supersonic leading edge has CN-alpha 11-15 % below exact linear theory (4 / B),
+    within 0.5 % with the partner sided (tests/unit/test_panair_delta_wing.py).  In thin-wing theory the upper
     half-space is influenced by the sources of the upper side of the whole plane
     only (e.g. Ward 1955, sec. 8.2; Jones & Cohen, *High Speed Wing Theory*, 1960,
     sec. 5); PAN AIR gets the same from its doublet sheets, whose potential
@@ -246,7 +260,7 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     fins = np.unique(panels.network[panels.wake_upper[lifting]])
     fin_r = _fin_index(panels, keep)
     planes, x0, tol = _fin_planes(panels, keep, cen, fins)
-    partner = _coplanar(planes, planes, tol) | np.eye(len(fins), dtype=bool)
+    partner = _partners(planes, tol)
     recv = _receiver_sides(planes, x0, tol, partner, cen, nrm, fin_r)
     for k in range(len(fins)):
         own = (fin_r == k) & (recv[k] != 0)
@@ -282,6 +296,12 @@ def _coplanar(planes_a, planes_b, tol) -> np.ndarray:
         for b, (cb, eb) in enumerate(planes_b):
             out[a, b] = abs(abs(float(ea @ eb)) - 1.0) < 1e-6 and abs(float((cb - ca) @ ea)) < tol
     return out
+
+
+def _partners(planes, tol) -> np.ndarray:
+    """(n_fins, n_fins): each fin and, with THIN_WING, its coplanar partners."""
+    own = np.eye(len(planes), dtype=bool)
+    return own | _coplanar(planes, planes, tol) if THIN_WING else own
 
 
 def _receiver_sides(planes, x0, tol, partner, cen_r, nrm_r, fin_r, mirrored=False) -> np.ndarray:
@@ -522,7 +542,7 @@ class SupersonicSolver:
         # a half model adds each source's value at the receiver's mirror image: those
         # pairs are separated by the fin sides of the mirror images (_mirror_sides)
         recv_m = _mirror_sides(panels, keep, cen, nrm, _fin_index(panels, keep)) \
-            if panels.symmetric and len(sides[0]) else None
+            if THIN_WING and panels.symmetric and len(sides[0]) else None
         # fin wakes where the body continues behind a fin (:mod:`.supersonic_wake`):
         # two-faced source sheets, unknowns after the panels' (m of them)
         self._m = m = len(cen)
@@ -530,6 +550,9 @@ class SupersonicSolver:
         fins = np.unique(panels.network[panels.wake_upper[lifting]]) if np.any(lifting) else []
         sheets = wake_sheets(panels, keep, fins) if WAKE_SHEETS else None
         self.wake_cells = 0 if sheets is None else sheets.n_cells
+        diaphragm = diaphragm_sheets(panels, keep, fins, self.B) if THIN_WING and len(fins) else None
+        self.diaphragm_cells = 0 if diaphragm is None else diaphragm.n_cells
+        sheets = merge_sheets(sheets, diaphragm)
         if sheets is not None:
             fl_w, cen_w, nrm_w, scale_w = sheet_geometry(sheets, self.B)
             x_phys = cen[:, 0] * self.B
@@ -546,7 +569,7 @@ class SupersonicSolver:
                               ((flat, fl_w), (cen, cen_w), (nrm, nrm_w)))
             scale = np.concatenate([scale, scale_w])
             planes, x0, tol = _fin_planes(panels, keep, self._cen_t, fins)
-            partner = _coplanar(planes, planes, tol) | np.eye(len(fins), dtype=bool)
+            partner = _partners(planes, tol)
             sides = sheet_sides(sides, sheets, _receiver_sides(planes, x0, tol, partner, cen_w,
                                                                nrm_w, sheets.fin))
             if recv_m is not None:

@@ -263,8 +263,10 @@ def wake_rows(A, Phi, m: int, sheets: WakeSheets, rowpos, kept_index):
         an_l = An.setdefault(rl, A[rl].copy())
         A[pair[0]] = an_u + an_l if ru != rl else an_u
         if ru != rl:
-            tp, tn = (rowpos(int(kept_index[t])) for t in sheets.te[c])
-            A[pair[1]] = (Phi[ru] - Phi[rl]) - (Phi[tp] - Phi[tn])
+            A[pair[1]] = Phi[ru] - Phi[rl]
+            if sheets.te[c, 0] >= 0:       # a wake (-1: a diaphragm, no jump)
+                tp, tn = (rowpos(int(kept_index[t])) for t in sheets.te[c])
+                A[pair[1]] -= Phi[tp] - Phi[tn]
     return sorted({r for p in done for r in p})
 
 
@@ -304,8 +306,10 @@ def folded_wake_systems(fold, twins, Phi0, Phi1, step, m: int, sheets: WakeSheet
             continue
         done.add(pair)
         flux = (full(u, True) + full(lo, True))[None, :]
-        tp, tn = (int(kept_index[t]) for t in sheets.te[c])
-        jump = (full(u, False) - full(lo, False) - full(tp, False) + full(tn, False))[None, :]
+        jump = (full(u, False) - full(lo, False))[None, :]
+        if sheets.te[c, 0] >= 0:           # a wake (-1: a diaphragm, no jump)
+            tp, tn = (int(kept_index[t]) for t in sheets.te[c])
+            jump = jump - (full(tp, False) - full(tn, False))[None, :]
         EA[ru] = fold.fold(flux)[0]
         if ru != rl:
             EA[rl] = fold.fold(jump)[0]

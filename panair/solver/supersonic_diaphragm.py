@@ -1,0 +1,108 @@
+"""Diaphragms ahead of subsonic fin leading edges for the supersonic source-panel solver.
+
+Linear theory (Evvard, NACA Report 951, 1950; Jones & Cohen, *High Speed Wing Theory*,
+1960, sec. 6): ahead of a leading edge that is subsonic (swept behind the Mach line)
+the upper and lower flows of a thin wing communicate through the part of the wing's
+plane inside the Mach cone of the wing (the "diaphragm"): there the flow is continuous,
+normal velocity and potential alike, and carries no load.  A source model whose fin
+faces act on their own side only (:func:`panair.solver.supersonic._fin_sides`) treats
+that plane as a wall (nothing there, w = 0 on each side), which loses the leading-edge
+suction peak of a subsonic edge (flat delta wing, 63.4 deg sweep, Mach 1.6: CN-alpha
+-12.6 % of Stewart's exact value, tests/unit/test_panair_delta_wing.py).  PAN AIR needs
+nothing extra: its doublet sheet's potential is continuous off the wing (Epton &
+Magnus, NASA CR-3251).
+
+The diaphragm is meshed as a two-faced sheet in the fin's plane (as the wake sheets,
+:mod:`.supersonic_wake`, each face a source acting on its own side), from the fin's
+leading edge forward to the Mach line through the root leading-edge point, along every
+spanwise strip of the fin where the edge lies behind that line; its conditions are
+the wake's with no potential jump (continuity of the normal mass flux and of the
+potential, :func:`.supersonic_wake.wake_rows` with ``te = -1``).  Solved, never
+integrated.  Numeric-only.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .influence import planar_corners
+from .supersonic_wake import WakeSheets, fin_plane
+
+__all__ = ["diaphragm_sheets", "merge_sheets"]
+
+MARGIN = 0.5
+"""The sheet starts this many fin chordwise panel lengths ahead of the Mach line
+through the root leading-edge point (nothing ahead of that line is disturbed by the
+fin, so that part of the sheet carries nothing; the margin keeps the sheet's front edge
+off the Mach line of the fin's own corner: a Mach-cone coincidence)."""
+
+
+def diaphragm_sheets(panels, keep, fins, B: float) -> WakeSheets | None:
+    """Diaphragm cells (physical coordinates) of the fins ``fins`` (network ids) at
+    Mach number sqrt(1 + B^2), or None where no fin has a subsonic leading edge.
+    Each strip between two spanwise stations of the fin's leading edge is split in
+    cells about one fin chordwise panel long."""
+    size = float(np.ptp(panels.corners.reshape(-1, 3), axis=0).max())
+    tol = 1e-9 * size
+    _, cen_all, _, _ = planar_corners(panels.corners)
+    xhat = np.array([1.0, 0.0, 0.0])
+    cells, fin_idx = [], []
+    for k, f in enumerate(fins):
+        on = panels.network == f
+        c0, e_t = fin_plane(cen_all[on])
+        e_s = np.cross(e_t, xhat)
+        e_s /= np.linalg.norm(e_s)
+        if c0 @ e_s < 0:
+            e_s = -e_s
+        pts = panels.corners[on].reshape(-1, 3)
+        mid = np.abs((pts - c0) @ e_t) < 1e-6 * size          # the edges in the mid-plane
+        s = np.round(pts[mid] @ e_s, 9)
+        x = pts[mid, 0]
+        st = np.unique(s)
+        if len(st) < 2:
+            continue
+        x_le = np.array([x[s == v].min() for v in st])
+        dx = float(np.median(np.ptp(panels.corners[on][..., 0], axis=1)))
+        x_mach = x_le[0] + B * (st - st[0]) - MARGIN * dx
+        length = x_le - x_mach
+        d = float(c0 @ e_t)
+        for j in range(len(st) - 1):
+            if length[j] <= MARGIN * dx + tol and length[j + 1] <= MARGIN * dx + tol:
+                continue                       # a supersonic strip: ahead of the Mach line
+            n = max(1, int(np.ceil(max(length[j], length[j + 1]) / dx)))
+            fr = np.linspace(0.0, 1.0, n + 1)
+            xa = x_mach[j] + fr * (x_le[j] - x_mach[j])
+            xb = x_mach[j + 1] + fr * (x_le[j + 1] - x_mach[j + 1])
+            for i in range(n):
+                q = np.array([xa[i] * xhat + st[j] * e_s + d * e_t,
+                              xb[i] * xhat + st[j + 1] * e_s + d * e_t,
+                              xb[i + 1] * xhat + st[j + 1] * e_s + d * e_t,
+                              xa[i + 1] * xhat + st[j] * e_s + d * e_t])
+                cells.append(q)
+                fin_idx.append(k)
+    if not cells:
+        return None
+    cells = np.array(cells)
+    fin_idx = np.array(fin_idx, np.int64)
+    _, _, nrm, _ = planar_corners(cells)
+    e_t = np.array([fin_plane(cen_all[panels.network == fins[k]])[1] for k in fin_idx])
+    sgn = np.sign(np.einsum("nj,nj->n", nrm, e_t))
+    pos = np.where(sgn[:, None, None] > 0, cells, cells[:, ::-1])     # faces looking to +e_t
+    w = len(cells)
+    return WakeSheets(corners=np.concatenate([pos, pos[:, ::-1]]),
+                      fin=np.concatenate([fin_idx, fin_idx]),
+                      side=np.concatenate([np.ones(w), -np.ones(w)]),
+                      x_root_te=np.full(len(fins), np.inf), te=-np.ones((w, 2), np.int64))
+
+
+def merge_sheets(a: WakeSheets | None, b: WakeSheets | None) -> WakeSheets | None:
+    """One WakeSheets of two (faces +e_t of both, then the others; ``x_root_te`` of
+    ``a``, the wakes)."""
+    if a is None or b is None:
+        return a if b is None else b
+    wa, wb = a.n_cells, b.n_cells
+
+    def cat(u, v):
+        return np.concatenate([u[:wa], v[:wb], u[wa:], v[wb:]])
+    return WakeSheets(corners=cat(a.corners, b.corners), fin=cat(a.fin, b.fin),
+                      side=cat(a.side, b.side), x_root_te=a.x_root_te,
+                      te=np.concatenate([a.te, b.te]))
