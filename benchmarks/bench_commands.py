@@ -100,11 +100,18 @@ def timed(cmd, env, cwd=ROOT, timeout=900) -> tuple[float, float]:
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def wait_for_background_compiles(cache: Path, limit_s: float = 300.0) -> None:
-    """Wait until no detached compile (``.<lib>.c`` in the JIT cache) is pending."""
+def wait_for_background_compiles(cache: Path, limit_s: float = 300.0) -> bool:
+    """Wait until no detached compile (``.<lib>.c`` in the JIT cache) is pending; False
+    when some still is after ``limit_s`` (it then runs beside the next commands)."""
     deadline = time.time() + limit_s
     while time.time() < deadline and list((cache / "jit").glob(".*.c")):
         time.sleep(0.5)
+    return not list((cache / "jit").glob(".*.c"))
+
+
+def pending_compiles(root: Path) -> int:
+    """Detached compiles still pending in any cache under ``root`` (this benchmark's)."""
+    return len(list(root.glob("**/jit/.*.c")))
 
 
 def whole_commands(runs: int) -> None:
@@ -124,7 +131,8 @@ def whole_commands(runs: int) -> None:
         warm = dict(env, IRONBARK_JIT="always")
         for name in cmds:
             timed(cmds[name], warm)
-        wait_for_background_compiles(cache, limit_s=60.0)   # leftovers of the first runs
+        if not wait_for_background_compiles(cache, limit_s=60.0):   # leftovers of the first runs
+            print("  note: a background compile of the first runs is still pending (it runs beside the rounds)")
         walls = {name: [] for name in cmds}
         cpus = {name: [] for name in cmds}
         for _ in range(runs):
@@ -161,6 +169,7 @@ def first_run_vs_vm(rounds: int) -> None:
     names = ("simulate", "ballast", "rank10", "mc1000")
     walls = {(name, mode): [] for name in names for mode in ("auto", "vm")}
     cpus = {(name, mode): [] for name in names for mode in ("auto", "vm")}
+    beside = {(name, mode): 0 for name in names for mode in ("auto", "vm")}
     with tempfile.TemporaryDirectory(prefix="ironbark-bench-") as tmp:
         pyc = Path(tmp) / "pyc"
         warm = environment(Path(tmp) / "bytecode", pyc, ROOT)
@@ -174,6 +183,9 @@ def first_run_vs_vm(rounds: int) -> None:
                     env = environment(cache, pyc)
                     if mode == "vm":
                         env["IRONBARK_JIT"] = "vm"
+                    # a compile an earlier run left (its 300 s wait ran out: at the lowest
+                    # priority a busy machine can starve it that long) runs beside this one
+                    beside[(name, mode)] += pending_compiles(Path(tmp)) > 0
                     wall, cpu = timed(cmds[name], env)
                     walls[(name, mode)].append(wall)
                     cpus[(name, mode)].append(cpu)
@@ -184,8 +196,13 @@ def first_run_vs_vm(rounds: int) -> None:
         a, v = walls[(name, "auto")], walls[(name, "vm")]
         r = statistics.median(x / y for x, y in zip(a, v))
         rc = statistics.median(x / y for x, y in zip(cpus[(name, "auto")], cpus[(name, "vm")]))
+        rounds_ = " ".join(f"{x / y:.2f}" for x, y in zip(a, v))
         print(f"  {name:9s} auto {statistics.median(a):7.2f} s, VM {statistics.median(v):7.2f} s  -> auto / VM "
-              f"{r:5.2f}x wall, {rc:5.2f}x foreground cpu  (goal <= 1)")
+              f"{r:5.2f}x wall, {rc:5.2f}x foreground cpu  (goal <= 1; rounds {rounds_})")
+        late = beside[(name, "auto")] + beside[(name, "vm")]
+        if late:
+            print(f"  {'':9s} note: {late} of {2 * rounds} runs started beside an earlier run's unfinished "
+                  "background compile")
 
 
 def median_time(func, repeat: int) -> tuple[float, float]:

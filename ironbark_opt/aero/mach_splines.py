@@ -133,7 +133,15 @@ def _piecewise_cubic(name: str, edges: np.ndarray, s: np.ndarray, target: np.nda
     ((4 n, m), at the 4 Chebyshev nodes ``s`` of each interval, as :func:`merged_spline`
     samples them; a 4 x 4 Vandermonde solve in s = (x - a) / h, exact to rounding),
     evaluated by an interval search (binary) and Horner's rule in u = x - a, all outputs
-    at once."""
+    at once.
+
+    The search stays binary: a constant-time bucket index (CasADi's equidistant ``low``
+    on ~1200 buckets, then at most two comparisons; the same intervals to the bit) cut
+    the compiled Calisto ascent from 2.92e6 to 2.72e6 instructions (callgrind) but took
+    ~10 % more time (1000 samples, one thread, 4 paired runs): its float-to-index chain
+    (divide, truncate, load, compare, truncate, load) is one long dependency, while the
+    binary search's branches are predicted well (the Mach number moves little between
+    calls)."""
     h = np.diff(edges)
     values = target.T                                                        # (m, 4 n)
     m, n = values.shape[0], edges.size - 1
