@@ -70,7 +70,8 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import as_completed
+from contextlib import nullcontext
 from dataclasses import replace
 
 import numpy as np
@@ -79,8 +80,8 @@ from ironbark_opt.aero.barrowman import BODY_LIFT_K, body_lift
 from ironbark_opt.errors import InputError, SolverError
 
 from .a502 import find_panair, run_panair
-from .blas_threads import limit_blas_threads
 from .bridge import transonic_bridge
+from .mach_pool import MachPool
 from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
 from .solver.panels import mirror_plane
@@ -404,30 +405,22 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             for m, arr, extra, cpm, how in done:
                 results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
                 ckpt.save(m, arr, extra, cpm, how)
-        elif pool is not None and len(jobs):
-            # a pool shared with other sweeps (panair.mach_pool): each Mach number saved
-            # as soon as it is solved
-            futures = [pool.submit(_job_cost(job), _solve_one, job) for job in jobs]
-            try:
-                for fut in as_completed(futures):
-                    m, arr, extra, cpm, how = fut.result()
-                    results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-                    ckpt.save(m, arr, extra, cpm, how)
-                    if bar:
-                        bar.update()
-            finally:
-                for fut in futures:
-                    fut.cancel()
-        elif workers > 1 and len(jobs) > 1:
-            # one BLAS thread per worker: the workers already fill the cores
-            # (panair.blas_threads: OpenBLAS's own threads oversubscribed them)
-            with ProcessPoolExecutor(max_workers=workers, initializer=limit_blas_threads,
-                                     initargs=(1,)) as own:
-                for m, arr, extra, cpm, how in own.map(_solve_one, jobs):
-                    results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-                    ckpt.save(m, arr, extra, cpm, how)
-                    if bar:
-                        bar.update()
+        elif pool is not None or (workers > 1 and len(jobs) > 1):
+            # Mach numbers in parallel (panair.mach_pool: one BLAS thread per worker, the
+            # costliest first), in a pool shared with other sweeps or this sweep's own;
+            # each saved as soon as it is solved
+            with nullcontext(pool) if pool is not None else MachPool(min(workers, len(jobs))) as mp:
+                futures = [mp.submit(_job_cost(job), _solve_one, job) for job in jobs]
+                try:
+                    for fut in as_completed(futures):
+                        m, arr, extra, cpm, how = fut.result()
+                        results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
+                        ckpt.save(m, arr, extra, cpm, how)
+                        if bar:
+                            bar.update()
+                finally:
+                    for fut in futures:
+                        fut.cancel()
         else:
             for job in jobs:
                 m, arr, extra, cpm, how = _solve_one(job)
