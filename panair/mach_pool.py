@@ -10,7 +10,7 @@ to one pool; at most ``workers`` jobs run at a time and a free worker takes the
 queued job of the largest ``cost`` (a sweep's estimate: panels squared, more for a
 supersonic matrix), whichever sweep it belongs to, so the jobs left at the end are
 short ones and the workers end together.  Each worker runs with one BLAS thread
-(:mod:`panair.blas_threads`).
+(:mod:`panair.blas_threads`) and keeps the memory it frees (:func:`_keep_freed_memory`).
 
 The worker processes are started (forked) when the pool is made, before the sweeps'
 threads run, so no worker is forked while another thread of this process holds a
@@ -29,6 +29,36 @@ from .blas_threads import limit_blas_threads
 __all__ = ["MachPool"]
 
 
+#: glibc's ``mallopt`` parameters (malloc.h)
+_M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3
+
+
+def _keep_freed_memory() -> bool:
+    """Let glibc's malloc serve large blocks from the heap and keep freed memory
+    (``mallopt(M_MMAP_THRESHOLD, 1 GiB)``, ``mallopt(M_TRIM_THRESHOLD, 2 GiB)``; glibc
+    manual, "Malloc Tunable Parameters"), so a worker's next Mach number reuses the
+    pages of the last one's matrices instead of faulting fresh ones in (by default a
+    block above 32 MiB is mmap'ed and given back when freed: every matrix of every
+    Mach number was new memory, zeroed by the kernel page by page).  Measured (the
+    two-stage fixture's stack, Mach 0.05, 0.5, 0.9, 1.2, 1.5, 2.0 solved one after the
+    other in one process, machine loaded): minor page faults 1.16 M -> 0.82 M, system
+    CPU 11.1 -> 4.4 s (subsonic Mach numbers after the first: 47 k faults -> 0).  The
+    worker holds its largest Mach number's memory until the pool ends.  Best effort:
+    without glibc nothing changes (only speed depends on it)."""
+    import ctypes
+    try:
+        fn = ctypes.CDLL(None).mallopt
+    except (OSError, AttributeError):
+        return False
+    fn.argtypes, fn.restype = [ctypes.c_int, ctypes.c_int], ctypes.c_int
+    return bool(fn(_M_MMAP_THRESHOLD, 1 << 30)) and bool(fn(_M_TRIM_THRESHOLD, (1 << 31) - 1))
+
+
+def _init_worker() -> None:
+    limit_blas_threads(1)
+    _keep_freed_memory()
+
+
 def _ready() -> bool:
     return True
 
@@ -42,8 +72,7 @@ class MachPool:
         from .solver.kernels import warm_up
         warm_up()                        # compiled (or loaded) here, inherited by the workers
         self.workers = int(workers)
-        self._pool = ProcessPoolExecutor(max_workers=self.workers, initializer=limit_blas_threads,
-                                         initargs=(1,))
+        self._pool = ProcessPoolExecutor(max_workers=self.workers, initializer=_init_worker)
         for f in [self._pool.submit(_ready) for _ in range(self.workers)]:
             f.result()                   # every worker forked now, from this thread alone
         self._lock = threading.Lock()
