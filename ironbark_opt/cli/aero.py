@@ -159,7 +159,7 @@ def _configurations_together(one, parts, workers: int) -> list:
     (:class:`panair.mach_pool.MachPool`): no core idles between the configurations'
     sweeps.  The first failure is raised once every thread has stopped (the queued
     jobs cancelled)."""
-    from concurrent.futures import FIRST_EXCEPTION, ThreadPoolExecutor, wait
+    from concurrent.futures import FIRST_EXCEPTION, CancelledError, ThreadPoolExecutor, wait
 
     from panair.mach_pool import MachPool
     with MachPool(workers) as pool, ThreadPoolExecutor(max_workers=len(parts)) as threads:
@@ -169,7 +169,11 @@ def _configurations_together(one, parts, workers: int) -> list:
         finally:
             if not all(f.done() and f.exception() is None for f in futures):
                 pool.cancel_queued()
-        return [f.result() for f in futures]
+        wait(futures)
+    errors = [f.exception() for f in futures if f.exception() is not None]
+    if errors:          # the failure, not the other configurations' cancelled jobs
+        raise next((e for e in errors if not isinstance(e, CancelledError)), errors[0])
+    return [f.result() for f in futures]
 
 
 def default_out(name: str) -> Path:
