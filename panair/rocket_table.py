@@ -46,7 +46,7 @@ def default_mach_grid(peak_mach: float | None = None) -> np.ndarray:
 def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float = 1.0,
                  workers: int = 2, progress: bool = False, use_panair: bool = False,
                  checkpoint_dir=None, extra_metadata: dict | None = None,
-                 fin_roll_offset: float = 0.0):
+                 fin_roll_offset: float = 0.0, pool=None):
     """Build the AeroTable of ``rocket`` (:class:`ironbark_opt.rocket.Rocket`).
 
     Parameters
@@ -59,7 +59,7 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
     alpha_deg : 1-D array [deg], optional (default :data:`DEFAULT_ALPHA_DEG`)
     refine : float
         Mesh refinement factor.
-    workers, progress, use_panair, checkpoint_dir
+    workers, progress, use_panair, checkpoint_dir, pool
         As :func:`panair.sweep.build_table`.
     extra_metadata : dict, optional
     fin_roll_offset : float [rad]
@@ -93,4 +93,4 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
                        options=MeshOptions(refine=refine), workers=workers, progress=progress,
                        use_panair=use_panair,
                        subsonic_pressure=lambda m: separated_pressure_ca(rocket, m, streamlined_edges=False),
-                       checkpoint_dir=checkpoint_dir, extra_metadata=extra_metadata)
+                       checkpoint_dir=checkpoint_dir, extra_metadata=extra_metadata, pool=pool)

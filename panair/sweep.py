@@ -70,7 +70,8 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import as_completed
+from contextlib import nullcontext
 from dataclasses import replace
 
 import numpy as np
@@ -79,8 +80,8 @@ from ironbark_opt.aero.barrowman import BODY_LIFT_K, body_lift
 from ironbark_opt.errors import InputError, SolverError
 
 from .a502 import find_panair, run_panair
-from .blas_threads import limit_blas_threads
 from .bridge import transonic_bridge
+from .mach_pool import MachPool
 from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
 from .solver.panels import mirror_plane
@@ -194,6 +195,12 @@ def _solve_one(args):
     return mach, np.array(rows), extra, None, _linear_how(solver)
 
 
+def _job_cost(job) -> float:
+    """A Mach-number job's relative cost: panels squared, four potential evaluations
+    per supersonic matrix entry."""
+    return float(job[0].n) ** 2 * (4 if job[1] >= MACH_SUPERSONIC_MIN else 1)
+
+
 def _linear_how(solver) -> str:
     """The method of a linear solution: "linear", or "linear-sonic-le" where a fin
     leading edge is sonic for linear theory and its pressures went out of range
@@ -276,7 +283,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                    xref: float, symmetric: bool = True, options: MeshOptions | None = None,
                    pressure_rule: str = "second-order", workers: int = 2, progress: bool = True,
                    use_panair: bool = False, panair_workdir=None, executor=None,
-                   checkpoint_dir=None):
+                   checkpoint_dir=None, pool=None):
     """Pressure CA, CN, Cm on a Mach x alpha grid.
 
     Parameters
@@ -302,6 +309,10 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
         Every Mach number is saved there as soon as it is solved (keyed by the
         mesh, the angles, the pressure rule and the Mach number) and a rerun
         (e.g. after an interrupted or partly failed build) reuses it.
+    pool : panair.mach_pool.MachPool, optional
+        Run the Mach numbers there (shared with other sweeps running in other
+        threads, e.g. a multi-stage rocket's configurations) instead of in a pool
+        of ``workers`` processes of this sweep's own.
 
     Returns
     -------
@@ -375,7 +386,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     # longest first (supersonic: more panels and four potential evaluations per
     # matrix), so the last Mach numbers to finish are short ones and the workers
     # end together; results are keyed by Mach number, the order changes nothing else
-    jobs.sort(key=lambda job: -job[0].n ** 2 * (4 if job[1] >= MACH_SUPERSONIC_MIN else 1))
+    jobs.sort(key=lambda job: -_job_cost(job))
     if len(jobs):
         # compile the influence kernels (or load them from the on-disk cache) once
         # here, so the worker processes forked below inherit them
@@ -394,16 +405,22 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             for m, arr, extra, cpm, how in done:
                 results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
                 ckpt.save(m, arr, extra, cpm, how)
-        elif workers > 1 and len(jobs) > 1:
-            # one BLAS thread per worker: the workers already fill the cores
-            # (panair.blas_threads: OpenBLAS's own threads oversubscribed them)
-            with ProcessPoolExecutor(max_workers=workers, initializer=limit_blas_threads,
-                                     initargs=(1,)) as pool:
-                for m, arr, extra, cpm, how in pool.map(_solve_one, jobs):
-                    results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-                    ckpt.save(m, arr, extra, cpm, how)
-                    if bar:
-                        bar.update()
+        elif pool is not None or (workers > 1 and len(jobs) > 1):
+            # Mach numbers in parallel (panair.mach_pool: one BLAS thread per worker, the
+            # costliest first), in a pool shared with other sweeps or this sweep's own;
+            # each saved as soon as it is solved
+            with nullcontext(pool) if pool is not None else MachPool(min(workers, len(jobs))) as mp:
+                futures = [mp.submit(_job_cost(job), _solve_one, job) for job in jobs]
+                try:
+                    for fut in as_completed(futures):
+                        m, arr, extra, cpm, how = fut.result()
+                        results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
+                        ckpt.save(m, arr, extra, cpm, how)
+                        if bar:
+                            bar.update()
+                finally:
+                    for fut in futures:
+                        fut.cancel()
         else:
             for job in jobs:
                 m, arr, extra, cpm, how = _solve_one(job)
@@ -482,7 +499,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                 extra_metadata: dict | None = None, executor=None,
                 crossflow_k: float = BODY_LIFT_K, subsonic_pressure=None,
                 friction_in_table: bool = False, alpha_extend_deg=ALPHA_EXTEND_DEG,
-                checkpoint_dir=None):
+                checkpoint_dir=None, pool=None):
     """Sweep -> AeroTable with the transonic, separated-flow, viscous and base parts.
 
     Parameters
@@ -512,6 +529,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     checkpoint_dir : path, optional
         Each solved Mach number is saved there and reused by a rerun
         (:func:`sweep_pressure`).
+    pool : panair.mach_pool.MachPool, optional
+        As in :func:`sweep_pressure`.
 
     Returns
     -------
@@ -533,7 +552,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                                   symmetric=symmetric, options=options, workers=workers,
                                   progress=progress, use_panair=use_panair,
                                   pressure_rule=pressure_rule, executor=executor,
-                                  checkpoint_dir=checkpoint_dir)
+                                  checkpoint_dir=checkpoint_dir, pool=pool)
     mach = np.asarray(mach, float)
     # ---- fully separated boattails' and reducers' base pressure, at the supersonic Mach numbers the
     # built-in solver solved without it (an external PANAIR integrates its own panels)

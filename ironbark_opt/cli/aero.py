@@ -121,16 +121,20 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
         mach_v = default_mach_grid(peak)
     if out is None:
         out = default_out(parts[0][1].name)
-    built = []
-    for conf, rk in parts:
+    def one(conf, rk, pool=None):
         stem = Path(out) if conf is None else Path(f"{out}-{conf.key}")
         ckpt = None if no_resume else Path(str(stem) + ".solved")
         extra = {"rocket_file": str(rocket), "peak_mach_estimate": peak,
                  **(conf.metadata() if conf is not None else {})}
         table = rocket_table(rk, aero_spec, mach_v, alpha_v, refine=refine, workers=workers,
                              progress=not no_progress and not as_json, use_panair=use_panair,
-                             checkpoint_dir=ckpt, extra_metadata=extra)
-        built.append((conf, rk, stem, ckpt, table))
+                             checkpoint_dir=ckpt, extra_metadata=extra, pool=pool)
+        return conf, rk, stem, ckpt, table
+
+    if len(parts) > 1 and workers > 1:
+        built = _configurations_together(one, parts, workers)
+    else:
+        built = [one(conf, rk) for conf, rk in parts]
     # every table solved before any is written: a failed build leaves no part of the set
     results, lines = [], []
     for conf, rk, stem, ckpt, table in built:
@@ -147,6 +151,29 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
     fly = " ".join(f"--table {shlex.quote(r['table_csv'])}" for r in results)
     emit({"tables": results, **common}, as_json,
          "\n".join(lines) + f"\nfly them: ironbark simulate {shlex.quote(str(rocket))} {fly}")
+
+
+def _configurations_together(one, parts, workers: int) -> list:
+    """``one(conf, rocket, pool)`` of every configuration at once, each in a thread,
+    their Mach numbers in one pool of ``workers`` processes, the costliest first
+    (:class:`panair.mach_pool.MachPool`): no core idles between the configurations'
+    sweeps.  The first failure is raised once every thread has stopped (the queued
+    jobs cancelled)."""
+    from concurrent.futures import FIRST_EXCEPTION, CancelledError, ThreadPoolExecutor, wait
+
+    from panair.mach_pool import MachPool
+    with MachPool(workers) as pool, ThreadPoolExecutor(max_workers=len(parts)) as threads:
+        futures = [threads.submit(one, conf, rk, pool) for conf, rk in parts]
+        try:
+            wait(futures, return_when=FIRST_EXCEPTION)
+        finally:
+            if not all(f.done() and f.exception() is None for f in futures):
+                pool.cancel_queued()
+        wait(futures)
+    errors = [f.exception() for f in futures if f.exception() is not None]
+    if errors:          # the failure, not the other configurations' cancelled jobs
+        raise next((e for e in errors if not isinstance(e, CancelledError)), errors[0])
+    return [f.result() for f in futures]
 
 
 def default_out(name: str) -> Path:

@@ -110,3 +110,33 @@ def test_aero_build_says_which_mach_numbers_use_local_inclination(tmp_path):
     meta = json.loads(Path(out["table_json"]).read_text())
     assert meta["mach_local_inclination"] == [4.0]
     assert "no solution at Mach 4 " in r.stderr and "local-inclination" in r.stderr
+
+
+def test_configurations_together_returns_in_order_and_raises_the_failure():
+    """aero build's configurations on one MachPool (cli/aero._configurations_together):
+    results in the configurations' order; a failing configuration's error is raised and
+    the jobs still queued are cancelled."""
+    import time
+
+    from ironbark_opt.cli.aero import _configurations_together
+    from ironbark_opt.errors import SolverError
+
+    def one(conf, rk, pool):
+        futs = [pool.submit(c, float, c) for c in rk]
+        return conf, [f.result() for f in futs]
+
+    assert _configurations_together(one, [("a", [1.0, 2.0]), ("b", [3.0])], 2) == \
+        [("a", [1.0, 2.0]), ("b", [3.0])]
+    queued = []
+
+    def failing(conf, rk, pool):
+        if conf == "bad":
+            time.sleep(0.2)
+            raise SolverError("Mach 1.5: no solution")
+        futs = [pool.submit(1.0, time.sleep, 0.3) for _ in range(20)]
+        queued.extend(futs)
+        return [f.result() for f in futs]
+
+    with pytest.raises(SolverError, match="no solution"):
+        _configurations_together(failing, [("good", None), ("bad", None)], 2)
+    assert sum(f.cancelled() for f in queued) >= 10

@@ -1,5 +1,6 @@
 """Sweeps to AeroTable, transonic bridge, Rocket adapter."""
 from pathlib import Path
+from time import sleep as time_sleep
 
 import numpy as np
 import pytest
@@ -316,3 +317,41 @@ def test_body_critical_mach_ignores_the_fin_root_corners():
     print(f"body Cp_min (incompressible) {cp0:.3f}, critical Mach {body_critical_mach(cp0):.3f}")
     assert -1.0 < cp0 < 0.0
     assert body_critical_mach(cp0) > 0.6
+
+
+def test_sweeps_sharing_one_mach_pool_equal_serial_sweeps(tmp_path):
+    """Two configurations swept at once in threads on one MachPool (as ``aero build``
+    runs a stack and its sustainer) give the numbers of one sweep after the other, each
+    in its own pool, bitwise (the same jobs, only scheduled together; both with one
+    BLAS thread per worker), every Mach number saved as it is solved."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from panair.mach_pool import MachPool
+    g1 = _bf()
+    g2 = RocketGeometry(BodyGeometry(g1.body.x * 0.8, g1.body.r), g1.fins, "short")
+    mach, alpha = [0.3, 0.7, 1.2, 1.5], np.radians([0.0, 3.0])
+    kw = dict(sref=np.pi * 0.015**2, lref=0.03, xref=0.15, options=COARSE, progress=False)
+    serial = [sweep_pressure(g, mach, alpha, workers=2, **kw)[0] for g in (g1, g2)]
+    with MachPool(2) as pool, ThreadPoolExecutor(2) as threads:
+        futs = [threads.submit(sweep_pressure, g, mach, alpha, workers=2, pool=pool,
+                               checkpoint_dir=tmp_path / g.name, **kw) for g in (g1, g2)]
+        shared = [f.result()[0] for f in futs]
+    for a, b in zip(serial, shared):
+        for k in ("CA", "CN", "Cm"):
+            np.testing.assert_array_equal(a[k], b[k])
+    for g in (g1, g2):
+        assert len(list((tmp_path / g.name).glob("*.npz"))) == len(mach)
+
+
+def test_mach_pool_runs_the_costliest_queued_job_first():
+    from panair.mach_pool import MachPool
+    with MachPool(1) as pool:
+        # the worker is busy with the first; the others wait and start by cost
+        first = pool.submit(0.0, time_sleep, 0.5)
+        order = [pool.submit(c, float, c) for c in (1.0, 3.0, 2.0)]
+        done = []
+        for f in order:
+            f.add_done_callback(lambda f: done.append(f.result()))
+        first.result()
+        [f.result() for f in order]
+    assert done == [3.0, 2.0, 1.0]
