@@ -48,7 +48,7 @@ def _keep_freed_memory() -> bool:
     import ctypes
     try:
         fn = ctypes.CDLL(None).mallopt
-    except (OSError, AttributeError):
+    except (OSError, AttributeError, TypeError):     # no glibc (macOS: no mallopt; Windows: no CDLL(None))
         return False
     fn.argtypes, fn.restype = [ctypes.c_int, ctypes.c_int], ctypes.c_int
     return bool(fn(_M_MMAP_THRESHOLD, 1 << 30)) and bool(fn(_M_TRIM_THRESHOLD, (1 << 31) - 1))
