@@ -88,23 +88,35 @@ class MachPool:
             if self._closed:
                 raise RuntimeError("MachPool is shut down")
             heapq.heappush(self._queue, (-float(cost), next(self._seq), fn, args, fut))
-            self._dispatch()
+            started = self._dispatch()
+        self._watch(started)
         return fut
 
-    def _dispatch(self) -> None:
-        """Start queued jobs while a worker is free (the lock held)."""
+    def _dispatch(self) -> list:
+        """Start queued jobs while a worker is free (the lock held); the (process
+        future, caller's future) pairs started, for :meth:`_watch` once the lock is
+        released."""
+        started = []
         while self._running < self.workers and self._queue:
             _, _, fn, args, fut = heapq.heappop(self._queue)
             if not fut.set_running_or_notify_cancel():
                 continue                 # cancelled while queued
             self._running += 1
-            inner = self._pool.submit(fn, *args)
-            inner.add_done_callback(lambda f, out=fut: self._finished(f, out))
+            started.append((self._pool.submit(fn, *args), fut))
+        return started
+
+    def _watch(self, started) -> None:
+        """Forward each started job's outcome to its caller's future (the lock not
+        held: a job already done runs the callback at once, in this thread, and
+        :meth:`_finished` takes the lock)."""
+        for inner, out in started:
+            inner.add_done_callback(lambda f, out=out: self._finished(f, out))
 
     def _finished(self, inner: Future, out: Future) -> None:
         with self._lock:
             self._running -= 1
-            self._dispatch()
+            started = self._dispatch()
+        self._watch(started)
         exc = CancelledError() if inner.cancelled() else inner.exception()
         if exc is not None:
             out.set_exception(exc)

@@ -355,3 +355,39 @@ def test_mach_pool_runs_the_costliest_queued_job_first():
         first.result()
         [f.result() for f in order]
     assert done == [3.0, 2.0, 1.0]
+
+
+def test_mach_pool_job_done_before_its_callback_is_attached():
+    """A job that is already finished when MachPool attaches its completion callback
+    (a short job on an idle worker) runs the callback at once in the submitting thread:
+    that must not take the pool's lock while submit holds it (it deadlocked: found by
+    the merged default suite).  The process pool is replaced by one that runs each job
+    at submission, so the case happens every time; the submit runs in a thread so a
+    deadlock fails the test instead of hanging it."""
+    import threading
+    from concurrent.futures import Future
+
+    from panair.mach_pool import MachPool
+
+    class Immediate:
+        def submit(self, fn, *args):
+            f = Future()
+            f.set_result(fn(*args))
+            return f
+
+        def shutdown(self, **kw):
+            pass
+
+    out = []
+    pool = MachPool(1)
+    real, pool._pool = pool._pool, Immediate()
+    t = threading.Thread(target=lambda: out.extend(pool.submit(c, float, c).result(timeout=5)
+                                                  for c in (1.0, 2.0, 3.0)), daemon=True)
+    t.start()
+    t.join(10)
+    pool._pool = real
+    if t.is_alive():                # deadlocked: the pool's lock is held for good
+        real.shutdown(wait=False, cancel_futures=True)
+        pytest.fail("MachPool.submit deadlocked on a job finished before its callback")
+    pool.shutdown()
+    assert out == [1.0, 2.0, 3.0]
