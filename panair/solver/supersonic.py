@@ -106,7 +106,11 @@ Stewart's value), but raises the supersonic CN-alpha of Allen's fin pairs on a
 fin 10 Mach 1.2 / 1.6 / 2.0 +34 / +24 / +16 % -> +52 / +32 / +23 %, fin 12 Mach 1.2
 +8 -> +16 %, past the regression bounds of tests/validation/test_allen_finbody.py
 (the source model passes a partner's influence straight through a thick body, where
-the flow goes around it).  Off by default until that is resolved."""
+the flow goes around it).  Off by default until that is resolved.  Also to check
+before: with it the wake-sheet faces are sided by :func:`_receiver_sides` instead of
+their own ``sheets.side``, which changes the default (flag off) solution when applied
+without the flag (found in integration: andromeda, Mach 1.2, CN up to 3e-3); with
+the flag off the sheets keep their own sides."""
 G1_MIN = 0.05
 """Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
 panel is (nearly) Mach-inclined and linear theory has no valid solution."""
@@ -568,10 +572,12 @@ class SupersonicSolver:
             flat, cen, nrm = (np.concatenate([a, b]) for a, b in
                               ((flat, fl_w), (cen, cen_w), (nrm, nrm_w)))
             scale = np.concatenate([scale, scale_w])
-            planes, x0, tol = _fin_planes(panels, keep, self._cen_t, fins)
-            partner = _partners(planes, tol)
-            sides = sheet_sides(sides, sheets, _receiver_sides(planes, x0, tol, partner, cen_w,
-                                                               nrm_w, sheets.fin))
+            recv_sheet = None               # the sheet faces: their own fin's side only
+            if THIN_WING:                   # ... and a coplanar partner's
+                planes, x0, tol = _fin_planes(panels, keep, self._cen_t, fins)
+                recv_sheet = _receiver_sides(planes, x0, tol, _partners(planes, tol), cen_w,
+                                             nrm_w, sheets.fin)
+            sides = sheet_sides(sides, sheets, recv_sheet)
             if recv_m is not None:
                 recv_m = np.hstack([recv_m, _mirror_sides(panels, keep, self._cen_t, self._nrm_t,
                                                           sheets.fin, cen_w, nrm_w)])
@@ -625,8 +631,9 @@ class SupersonicSolver:
             try:
                 lu = CausalLU(A, cen[r, 0])
                 diag = lu.pivots()
-            except SolverError:
-                lu, diag = None, np.zeros(1)
+            except SolverError as err:      # no causal factorisation: as singular
+                raise SolverError(f"Mach {mach}: singular supersonic influence matrix "
+                                  f"(Mach-cone coincidences or duplicated panels; {err})") from err
             del A
             if diag.min() < 1e-8 * diag.max():
                 raise SolverError(f"Mach {mach}: singular supersonic influence matrix "
