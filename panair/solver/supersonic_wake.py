@@ -230,10 +230,10 @@ def sheet_sides(sides, sheets: WakeSheets, recv_sheet=None):
     as receivers if given (:func:`panair.solver.supersonic._receiver_sides`, which
     also sides them for a coplanar fin), else their own fin's only."""
     recv, src_fin, src_side = sides
-    rw = np.zeros((len(recv), len(sheets.fin)))
-    rw[sheets.fin, np.arange(len(sheets.fin))] = sheets.side
-    if recv_sheet is not None:
-        rw = recv_sheet
+    rw = recv_sheet
+    if rw is None:
+        rw = np.zeros((len(recv), len(sheets.fin)))
+        rw[sheets.fin, np.arange(len(sheets.fin))] = sheets.side
     return (np.hstack([recv, rw]), np.concatenate([src_fin, sheets.fin]),
             np.concatenate([src_side, sheets.side]))
 
