@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ironbark_opt import _math
 from ironbark_opt.aero.base_drag import cd_base
 from ironbark_opt.aero.compressibility import LOCK_MACH_MAX, korn_critical_mach, lock_rise
 from ironbark_opt.aero.table import AeroTable
@@ -53,11 +54,11 @@ MACH = np.concatenate([np.linspace(0.0, 0.8, 9), np.linspace(0.85, 1.2, 8), np.l
 
 
 def stagnation_ratio(mach):
-    """q_stag / q [-] (Niskanen 2013, eq. 3.85-3.86); numeric-only."""
-    m = np.asarray(mach, dtype=float)
-    ms = np.maximum(m, 1.0)
-    return np.where(m < 1.0, 1.0 + m ** 2 / 4.0 + m ** 4 / 40.0,
-                    1.84 - 0.76 / ms ** 2 + 0.166 / ms ** 4 + 0.035 / ms ** 6)
+    """q_stag / q [-] (Niskanen 2013, eq. 3.85-3.86); symbolic-safe."""
+    m = mach if _math.is_symbolic(mach) else np.asarray(mach, dtype=float)
+    ms = _math.fmax(m, 1.0)
+    return _math.if_else(m < 1.0, 1.0 + m ** 2 / 4.0 + m ** 4 / 40.0,
+                         1.84 - 0.76 / ms ** 2 + 0.166 / ms ** 4 + 0.035 / ms ** 6)
 
 
 def rounded_le(mach):

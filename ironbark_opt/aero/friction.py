@@ -7,6 +7,10 @@ roughness) and FF_i its form factor (Hoerner).  Component build-up as in Niskane
 OpenRocket technical documentation (2013), eq. 3.85, with Hoerner form factors in place
 of OpenRocket's (1 + 1/(2 f_B)) and (1 + 2 t/c).
 
+Drag increments that live at flight conditions like friction (the launch guides,
+:mod:`ironbark_opt.aero.protuberance`) are added to the sum (``protuberances``) and
+tabulated with it.
+
 `FrictionDrag.CA` is meant for the symbolic RK4 step, so it is cheap: the whole sum is
 tabulated once, at construction, on a (Mach, log10 Re per metre) grid and evaluated by
 one 2-D B-spline (the same spline in SciPy and CasADi).  Its error against the formulas
@@ -120,12 +124,18 @@ class FrictionDrag:
     reynolds_per_m_range : (float, float) [1/m]
         Table range of the unit Reynolds number; below the minimum the value is held
         (near-zero airspeed), above the maximum clamped with a warning.
+    protuberances : sequence
+        Drag increments evaluated at flight conditions with the friction and tabulated
+        with it: objects with ``CA(mach, reynolds_per_m, reference_area)`` (symbolic-safe),
+        e.g. the launch guides of :mod:`ironbark_opt.aero.protuberance`.
     """
 
     def __init__(self, components: Sequence[FrictionComponent], reference_area: float,
                  re_transition: float = RE_TRANSITION_DEFAULT, *, temperature: float = T_DEFAULT,
-                 mach_max: float = 5.0, reynolds_per_m_range: tuple[float, float] = (1.0e3, 1.0e9)):
+                 mach_max: float = 5.0, reynolds_per_m_range: tuple[float, float] = (1.0e3, 1.0e9),
+                 protuberances: Sequence = ()):
         self.components = tuple(components)
+        self.protuberances = tuple(protuberances)
         if not self.components or not all(isinstance(c, FrictionComponent) for c in self.components):
             raise InputError("expected a non-empty sequence of FrictionComponent", field="components")
         if not reference_area > 0:
@@ -151,7 +161,8 @@ class FrictionDrag:
                                  axis_names=("mach", "log10_reynolds_per_m"))
 
     def __repr__(self) -> str:
-        return (f"FrictionDrag({len(self.components)} components, Sref {self.reference_area:g} m^2, "
+        extra = f", {len(self.protuberances)} protuberances" if self.protuberances else ""
+        return (f"FrictionDrag({len(self.components)} components{extra}, Sref {self.reference_area:g} m^2, "
                 f"Re_tr {self.re_transition:g})")
 
     @property
@@ -175,6 +186,8 @@ class FrictionDrag:
             cf = cf_flat_plate(mach, reynolds_per_m * c.length, c.length, c.roughness,
                                self.re_transition, temperature)
             total = total + cf * (c.form_factor * c.wetted_area / self.reference_area)
+        for p in self.protuberances:
+            total = total + p.CA(mach, reynolds_per_m, self.reference_area)
         return total
 
     def CA(self, mach, reynolds_per_m):

@@ -7,7 +7,7 @@ Sources, in order of precedence for each coefficient:
   drag the table does not include (its ``includes`` metadata says which);
   without a table: friction + base drag only, which misses pressure/wave
   drag, so :func:`build_aero_model` refuses that (a table or drag curve is
-  required).
+  required).  The launch guides' drag (:mod:`.protuberance`) goes with the friction.
 - **Normal force CN and pitching moment Cm**: the table's ``CN``/``Cm`` when
   present; otherwise the Barrowman baseline (:mod:`.barrowman`) with
   ``CN = CN_alpha(M) sin(alpha)`` plus Galejs' body lift
@@ -22,6 +22,7 @@ All methods are symbolic-safe; the flight core calls them with CasADi SX.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import casadi as ca
@@ -32,6 +33,7 @@ from ironbark_opt.aero import barrowman, damping
 from ironbark_opt.aero.base_drag import BaseDrag
 from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
 from ironbark_opt.errors import InputError
+from ironbark_opt.rocket.hardware import DEFAULT_BUTTON
 
 _ALPHA_CP = math.radians(0.5)   # [rad] angle at which a table's CP is read
 #: Mach grid of the tabulated Barrowman/damping sums (cubic B-spline; inputs clamped to it)
@@ -332,12 +334,37 @@ def friction_components(rocket, roughness: float) -> list[FrictionComponent]:
     for fs in rocket.fin_sets():
         comps.append(FrictionComponent.fins(fs.name, fs.wetted_area(), fs.mean_aerodynamic_chord(),
                                             fs.thickness, roughness=_own_roughness(fs, roughness)))
+    from ironbark_opt.rocket.hardware import LaunchLug
+    for lug in (c for c in rocket.components if isinstance(c, LaunchLug)):
+        # its outer surface, a run of its own length (form factor 1: Niskanen 2013, sec. 3.4.4
+        # gives the lug's pressure drag, :mod:`.protuberance`; its friction is the flat plate's)
+        comps.append(FrictionComponent(lug.name, lug.wetted_area(), lug.length,
+                                       roughness=min(roughness, 0.5 * lug.length)))
     return comps
 
 
+def guide_drag(rocket) -> tuple[tuple, tuple[str, ...]]:
+    """The launch guides' drag increments (:mod:`.protuberance`) of ``rocket`` and the button
+    sizes assumed because the file gave none (numeric-only)."""
+    from ironbark_opt.aero.protuberance import LaunchLugDrag, RailButtonDrag
+    from ironbark_opt.rocket.hardware import LaunchLug, RailButtons
+    out, assumed = [], ()
+    for c in rocket.components:
+        if isinstance(c, RailButtons):
+            size, assumed = c.button_size()
+            out.append(RailButtonDrag(c.stations(), name=c.name, **size))
+        elif isinstance(c, LaunchLug):
+            out.append(LaunchLugDrag(c.length, c.outer_radius, c.inner_radius, name=c.name))
+    return tuple(out), assumed
+
+
 def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re_transition: float = 5e5,
-                     jet_area: float = 0.0, jet_area_source: str = "") -> AeroModel:
+                     jet_area: float = 0.0, jet_area_source: str = "", guides: bool = True) -> AeroModel:
     """Assemble the model of ``rocket`` (numeric-only; the result is symbolic-safe).
+
+    The launch guides' drag (:func:`guide_drag`) goes with the skin friction: added
+    (at flight conditions) when the table does not include friction, with a warning
+    when the rail buttons' size was assumed.
 
     Parameters
     ----------
@@ -350,6 +377,8 @@ def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re
         Nozzle exit area filling the base while the motor burns.
     jet_area_source : str
         Where ``jet_area`` came from (kept on the model for reports).
+    guides : bool
+        Add the launch guides' drag (False: without, for comparisons).
     """
     if table is None or not table.has("CA"):
         raise InputError("no axial-force data: give drag curves ([aero] drag_power_off) or an aerodynamic "
@@ -364,7 +393,14 @@ def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re
     jet_area = min(float(jet_area), math.pi * r_base ** 2)     # the jet cannot fill more than the base
     friction = None
     if "friction" not in includes:
-        friction = FrictionDrag(friction_components(rocket, surface_roughness), aref, re_transition)
+        extra, assumed = guide_drag(rocket) if guides else ((), ())
+        if extra and assumed:
+            warnings.warn(f"{rocket.name}: the rail buttons' size is not given; their drag assumes "
+                          f"OpenRocket's default button ({', '.join(f'{k} {v * 1e3:g} mm' for k, v in DEFAULT_BUTTON.items() if k in assumed)}"
+                          f"); give outer_diameter and height in [[component]] rail_buttons",
+                          UserWarning, stacklevel=2)
+        friction = FrictionDrag(friction_components(rocket, surface_roughness), aref, re_transition,
+                                protuberances=extra)
     base = None
     jet_relief = None
     if "base" not in includes:

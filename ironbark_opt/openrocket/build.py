@@ -88,15 +88,30 @@ def geometry(doc: OrkDocument) -> Rocket:
     """The Rocket (geometry; mass from :meth:`OrkDocument.dry_mass_properties`)."""
     comps = [convert.body_component(c) for c in doc.rocket.body()]
     guide = None
+    buttons = []                                    # (component, its buttons' stations [m])
     for c in doc.rocket.core_components():          # parallel boosters: openrocket.parallel
         if c.kind in FINS:
             comps.append(convert.fin_set(c))
-        elif c.kind == "railbutton" and guide is None:
+        elif c.kind == "railbutton":
             n, sep = c.geo["instances"]
-            if n >= 2 and sep > 0:
-                x0 = c.x + 0.5 * c.length
-                guide = RailButtons(x_fore=x0, x_aft=x0 + (n - 1) * sep, height=c.geo["height"],
-                                    name=c.name, angle=math.radians(c.element.number("angleoffset", 0.0)))
+            x0 = c.x + 0.5 * c.length
+            buttons.append((c, [x0 + i * sep for i in range(n)]))
+    for c, xs in buttons:
+        # the first component of two or more buttons rides the rail; every button has drag
+        # (the others take its size: OpenRocket's RailButtonCalc sizes each instance alike)
+        n, sep = c.geo["instances"]
+        if n >= 2 and sep > 0:
+            g = c.geo
+            others = xs[1:-1] + [x for c2, xs2 in buttons if c2 is not c for x in xs2]
+            size = {}
+            if g["outer_diameter"] > 0 and g["height"] > 0 and g["base_height"] + g["flange_height"] <= g["height"]:
+                size = {"outer_diameter": g["outer_diameter"], "base_height": g["base_height"],
+                        "flange_height": g["flange_height"],
+                        "inner_diameter": min(g["inner_diameter"], g["outer_diameter"])}
+            guide = RailButtons(x_fore=xs[0], x_aft=xs[-1], height=g["height"], name=c.name,
+                                angle=math.radians(c.element.number("angleoffset", 0.0)),
+                                x_other=tuple(others), **size)
+            break
     if guide is None:
         for c in doc.rocket.core_components():
             if c.kind == "launchlug" and c.geo["radius"] > c.geo["thickness"] >= 0:

@@ -98,7 +98,7 @@ def _booster_lift_and_friction(aero, booster, count: int, x0: float, roughness: 
     fr = aero.friction
     extra = tuple(dataclasses.replace(c, name=f"{booster.name} {c.name} x{count}", wetted_area=count * c.wetted_area)
                   for c in friction_components(booster, roughness))
-    return lift, FrictionDrag(fr.components + extra, aref, fr.re_transition)
+    return lift, FrictionDrag(fr.components + extra, aref, fr.re_transition, protuberances=fr.protuberances)
 
 
 def with_boosters(aero, booster, count: int, x0: float, *, roughness: float, jet_area: float = 0.0):

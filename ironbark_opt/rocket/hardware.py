@@ -58,6 +58,12 @@ class PointMass:
         return MassProperties.axisymmetric(self.mass, self.x, self.I_transverse, self.I_axial)
 
 
+#: OpenRocket's default rail button (``RailButton()``, OpenRocket 23.09) [m]: the size the
+#: drag model assumes when a file gives none (said in a warning when flown)
+DEFAULT_BUTTON = {"outer_diameter": 0.0097, "inner_diameter": 0.008, "height": 0.0097,
+                  "base_height": 0.002, "flange_height": 0.002}
+
+
 @dataclass(frozen=True, kw_only=True)
 class RailButtons:
     """A pair of rail buttons (the rocket leaves the rail when the aft one does).
@@ -67,13 +73,28 @@ class RailButtons:
     x_fore, x_aft : float [m]
         Button positions aft of the nose tip, ``x_fore < x_aft``.
     height : float [m]
-        Standoff of the button from the body surface (drag and meshing).
+        Standoff of the button from the body surface to the top of its flange
+        (drag and mass); 0 = not given.
     mass_each : float [kg]
+        Per button (all of them, ``x_other`` too).
     name : str
     angle : float [rad] or None
         Angular position of the buttons around the body, from its +y axis toward
         +z (the fin sets' ``roll`` convention; OpenRocket's angle offset).  None:
         point masses on the axis.
+    outer_diameter : float [m] or None
+        Button diameter (drag, :mod:`ironbark_opt.aero.protuberance`).  None: the
+        size is not given and the drag model assumes OpenRocket's default button
+        (:data:`DEFAULT_BUTTON`; the flight warns that it did).
+    inner_diameter : float [m] or None
+        Diameter of the notch the rail's lips ride in; None: ``outer_diameter``
+        (a plain cylinder).  Only with ``outer_diameter``.
+    base_height, flange_height : float [m]
+        Heights of the full-diameter standoff at the foot and flange at the top
+        (the notch is between them); default 0.  Only with ``outer_diameter``.
+    x_other : tuple of float [m]
+        Stations of further buttons of the same size (drag and mass only; the rail
+        exit is set by ``x_fore`` and ``x_aft``).
     """
 
     x_fore: float = 0.0
@@ -82,15 +103,62 @@ class RailButtons:
     mass_each: float = 0.0
     name: str = "rail buttons"
     angle: float | None = None
+    outer_diameter: float | None = None
+    inner_diameter: float | None = None
+    base_height: float = 0.0
+    flange_height: float = 0.0
+    x_other: tuple = ()
 
     def __post_init__(self):
         x1 = v.nonnegative(self.x_fore, "x_fore")
         x2 = v.nonnegative(self.x_aft, "x_aft")
         if not x2 > x1:
             raise InputError(f"x_aft ({x2} m) must lie aft of x_fore ({x1} m)", field="x_aft")
-        v.set_fields(self, x_fore=x1, x_aft=x2,
-                     height=v.nonnegative(self.height, "height"),
-                     mass_each=v.nonnegative(self.mass_each, "mass_each", "kg"))
+        if isinstance(self.x_other, (str, bytes)) or not hasattr(self.x_other, "__iter__"):
+            raise InputError(f"expected a list of stations [m], got {self.x_other!r}", field="x_other")
+        h = v.nonnegative(self.height, "height")
+        od = v.optional(v.positive, self.outer_diameter, "outer_diameter")
+        idia = v.optional(v.nonnegative, self.inner_diameter, "inner_diameter")
+        base = v.nonnegative(self.base_height, "base_height")
+        flange = v.nonnegative(self.flange_height, "flange_height")
+        if od is None:
+            for key, val in (("inner_diameter", idia), ("base_height", base or None),
+                             ("flange_height", flange or None)):
+                if val is not None:
+                    raise InputError(f"{key} needs the button's outer_diameter", field="outer_diameter")
+        else:
+            if not h > 0:
+                raise InputError("a button with an outer_diameter needs its height > 0 m", field="height")
+            if idia is not None and idia > od:
+                raise InputError(f"inner_diameter ({idia} m) exceeds outer_diameter ({od} m)",
+                                 field="inner_diameter")
+            if base + flange > h:
+                raise InputError(f"base_height + flange_height ({base + flange} m) exceed the height "
+                                 f"({h} m)", field="flange_height")
+        v.set_fields(self, x_fore=x1, x_aft=x2, height=h,
+                     mass_each=v.nonnegative(self.mass_each, "mass_each", "kg"),
+                     outer_diameter=od, inner_diameter=idia, base_height=base, flange_height=flange,
+                     x_other=tuple(v.nonnegative(x, "x_other") for x in self.x_other))
+
+    def stations(self) -> tuple[float, ...]:
+        """Every button's station [m]: ``x_fore``, ``x_aft``, then ``x_other``."""
+        return (self.x_fore, self.x_aft) + self.x_other
+
+    def button_size(self) -> tuple[dict, tuple[str, ...]]:
+        """(``{outer_diameter, inner_diameter, height, base_height, flange_height}`` [m],
+        the names taken from :data:`DEFAULT_BUTTON` because the file did not give them).
+
+        Without ``outer_diameter`` the button is OpenRocket's default one, its height
+        kept when given (> 0); with it, a missing ``inner_diameter`` is the outer one."""
+        if self.outer_diameter is None:
+            size = dict(DEFAULT_BUTTON)
+            if self.height > 0:
+                size["height"] = self.height
+            return size, tuple(k for k in DEFAULT_BUTTON if k != "height" or not self.height > 0)
+        return {"outer_diameter": self.outer_diameter,
+                "inner_diameter": self.outer_diameter if self.inner_diameter is None else self.inner_diameter,
+                "height": self.height, "base_height": self.base_height,
+                "flange_height": self.flange_height}, ()
 
     @property
     def rail_guides(self) -> tuple[float, float]:
@@ -98,20 +166,25 @@ class RailButtons:
         return self.x_fore, self.x_aft
 
     def mass_properties(self, radius_at=None) -> MassProperties:
-        """Two point masses (numeric-only): on the axis, or with ``angle`` (and the
+        """Point masses at :meth:`stations` (numeric-only): on the axis, or with ``angle`` (and the
         body's ``radius_at(x)`` [m]) at radius r = body radius + height/2 in the
         direction (y, z) = r (cos angle, sin angle).  The inertia is taken about the
         axis point at the buttons' mean x (their small lateral CG offset is
         neglected, as for every component): I = sum m (|d|^2 1 - d d^T),
         d = (x_i - x_mean, y, z), so the roll inertia gains 2 m r^2 and the product
         I_yz = -2 m y z appears (a button off the pitch or yaw plane)."""
-        m = 2.0 * self.mass_each
-        cg = 0.5 * (self.x_fore + self.x_aft)
-        half = 0.5 * (self.x_aft - self.x_fore)
+        xs = self.stations()
+        m = len(xs) * self.mass_each
+        if self.x_other:
+            cg = sum(xs) / len(xs)
+            i_t = self.mass_each * sum((x - cg) ** 2 for x in xs)
+        else:
+            cg = 0.5 * (self.x_fore + self.x_aft)
+            i_t = self.mass_each * 2 * (0.5 * (self.x_aft - self.x_fore)) ** 2
         if self.angle is None or radius_at is None:
-            return MassProperties.axisymmetric(m, cg, self.mass_each * 2 * half ** 2, 0.0)
+            return MassProperties.axisymmetric(m, cg, i_t, 0.0)
         inertia = np.zeros((3, 3))
-        for x in (self.x_fore, self.x_aft):
+        for x in xs:
             r = float(radius_at(x)) + 0.5 * self.height
             d = np.array([x - cg, r * np.cos(self.angle), r * np.sin(self.angle)])
             inertia += self.mass_each * (d @ d * np.eye(3) - np.outer(d, d))

@@ -48,7 +48,8 @@ COMPONENT_KEYS = {
                                  "sweep_angle_deg"),
     "elliptical_fins": _FINS + ("root_chord", "span"),
     "freeform_fins": _FINS + ("points",),
-    "rail_buttons": ("type", "name", "x_fore", "x_aft", "height", "mass_each", "angle_deg"),
+    "rail_buttons": ("type", "name", "x_fore", "x_aft", "height", "mass_each", "angle_deg",
+                     "outer_diameter", "inner_diameter", "base_height", "flange_height", "x_other"),
     "launch_lug": ("type", "name", "x", "length", "outer_radius", "inner_radius",
                    "material", "density"),
     "point_mass": ("type", "name", "x", "mass", "I_transverse", "I_axial"),
@@ -434,6 +435,11 @@ def _read_component(rd: _Reader, d, i, prev):
             kw[key] = val
         elif key == "points":
             kw[key] = val
+        elif key == "x_other":
+            if not isinstance(val, list):
+                raise rd.error(f"expected a list of stations [m], got {val!r}", "component", key, i,
+                               field=f"{label}.{key}")
+            kw[key] = tuple(val)
         else:
             kw[key] = rd.number(d, key, "component", i, label)
     if kind in ("nose_cone", "body_tube", "transition", "trapezoidal_fins", "elliptical_fins",

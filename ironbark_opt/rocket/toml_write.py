@@ -32,7 +32,8 @@ _FIELDS = {
     "trapezoidal_fins": _FIN + ("root_chord", "tip_chord", "span", "sweep_length"),
     "elliptical_fins": _FIN + ("root_chord", "span"),
     "freeform_fins": _FIN + ("points",),
-    "rail_buttons": ("name", "x_fore", "x_aft", "height", "mass_each"),
+    "rail_buttons": ("name", "x_fore", "x_aft", "height", "mass_each", "outer_diameter",
+                     "inner_diameter", "base_height", "flange_height", "x_other"),
     "launch_lug": ("name", "x", "length", "outer_radius", "inner_radius", "density"),
     "point_mass": ("name", "x", "mass", "I_transverse", "I_axial"),
     "inner_tube": ("name", "x", "length", "outer_radius", "inner_radius", "density", "mass"),
@@ -65,6 +66,8 @@ def _component(comp) -> dict:
     for key in _FIELDS[kind]:
         val = getattr(comp, key)
         if key == "filled" and not val:
+            continue
+        if kind == "rail_buttons" and key in ("base_height", "flange_height", "x_other") and not val:
             continue
         if key == "points":
             val = [list(map(float, p)) for p in val]
