@@ -334,18 +334,13 @@ def friction_components(rocket, roughness: float) -> list[FrictionComponent]:
     for fs in rocket.fin_sets():
         comps.append(FrictionComponent.fins(fs.name, fs.wetted_area(), fs.mean_aerodynamic_chord(),
                                             fs.thickness, roughness=_own_roughness(fs, roughness)))
-    from ironbark_opt.rocket.hardware import LaunchLug
-    for lug in (c for c in rocket.components if isinstance(c, LaunchLug)):
-        # its outer surface, a run of its own length (form factor 1: Niskanen 2013, sec. 3.4.4
-        # gives the lug's pressure drag, :mod:`.protuberance`; its friction is the flat plate's)
-        comps.append(FrictionComponent(lug.name, lug.wetted_area(), lug.length,
-                                       roughness=min(roughness, 0.5 * lug.length)))
     return comps
 
 
-def guide_drag(rocket) -> tuple[tuple, tuple[str, ...]]:
-    """The launch guides' drag increments (:mod:`.protuberance`) of ``rocket`` and the button
-    sizes assumed because the file gave none (numeric-only)."""
+def guide_drag(rocket, roughness: float = 60e-6) -> tuple[tuple, tuple[str, ...]]:
+    """The launch guides' drag increments (:mod:`.protuberance`) of ``rocket`` (a lug's bore
+    with the finish ``roughness`` [m]) and the button sizes assumed because the file gave
+    none (numeric-only)."""
     from ironbark_opt.aero.protuberance import LaunchLugDrag, RailButtonDrag
     from ironbark_opt.rocket.hardware import LaunchLug, RailButtons
     out, assumed = [], ()
@@ -354,7 +349,9 @@ def guide_drag(rocket) -> tuple[tuple, tuple[str, ...]]:
             size, assumed = c.button_size()
             out.append(RailButtonDrag(c.stations(), name=c.name, **size))
         elif isinstance(c, LaunchLug):
-            out.append(LaunchLugDrag(c.length, c.outer_radius, c.inner_radius, name=c.name))
+            k = min(roughness, 0.5 * c.inner_radius if c.inner_radius > 0 else 0.5 * c.length)
+            out.append(LaunchLugDrag(c.x + 0.5 * c.length, c.length, c.outer_radius, c.inner_radius,
+                                     roughness=k, name=c.name))
     return tuple(out), assumed
 
 
@@ -393,7 +390,7 @@ def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re
     jet_area = min(float(jet_area), math.pi * r_base ** 2)     # the jet cannot fill more than the base
     friction = None
     if "friction" not in includes:
-        extra, assumed = guide_drag(rocket) if guides else ((), ())
+        extra, assumed = guide_drag(rocket, surface_roughness) if guides else ((), ())
         if extra and assumed:
             warnings.warn(f"{rocket.name}: the rail buttons' size is not given; their drag assumes "
                           f"OpenRocket's default button ({', '.join(f'{k} {v * 1e3:g} mm' for k, v in DEFAULT_BUTTON.items() if k in assumed)}"

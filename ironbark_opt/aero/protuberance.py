@@ -37,13 +37,26 @@ OpenRocket/RASAero curve) is taken to include them.
 - frontal shape as OpenRocket's ``RailButton``: outer diameter over the base
   (standoff) and the flange, inner diameter over the notch between them.
 
-**Launch lug** (Niskanen, *OpenRocket technical documentation*, 2013, sec. 3.4.4,
-"parasitic drag", after Hoerner 1965, pp. 3-11 and 5-8):
-CD = max(1.3 - 0.3 l/d, 1) * 0.85 q_stag/q on the area
-pi r_o^2 - pi r_i^2 max(1 - l/d, 0), d = 2 r_o, with the stagnation-pressure ratio
-of eq. 3.85-3.86 (:func:`~ironbark_opt.aero.empirical_drag.stagnation_ratio`); the
-skin friction of its outer surface is a friction component
-(:func:`~ironbark_opt.aero.model.friction_components`).
+**Launch lug**, an open tube on the wall (the model of OpenRocket 23.09's
+``TubeCalc``, with sourced coefficients), all of it at the mean dynamic pressure of
+the boundary layer over its height 2 r_o (as the buttons; Mach and Reynolds numbers
+at the matching local speed):
+
+- its frontal annulus pi (r_o^2 - r_i^2) carries the stagnation pressure of a blunt
+  face, 0.85 q_stag/q (Niskanen, *OpenRocket technical documentation*, 2013,
+  eq. 3.85-3.87; :func:`~ironbark_opt.aero.empirical_drag.stagnation_ratio`), and its
+  rear annulus base drag (eq. 3.94, :func:`~ironbark_opt.aero.base_drag.cd_base`).
+  OpenRocket multiplies their sum by 0.7 (no source given) and ignores the boundary
+  layer; not here;
+- the flow through the bore: the Darcy-Weisbach pressure drop f (l/d_i) q on the bore
+  area pi r_i^2, f from Churchill's (1977) all-regime friction factor at
+  Re_d = (Re per metre) d_i with the rocket's finish (:func:`churchill_friction_factor`;
+  OpenRocket uses Swamee & Jain's turbulent formula);
+- skin friction on its outer surface 2 pi r_o l: the flat plate of its own length
+  (:func:`~ironbark_opt.aero.friction_flatplate.cf_flat_plate`; OpenRocket: none).
+  (Niskanen's older solid-cylinder estimate, sec. 3.4.4, max(1.3 - 0.3 l/d, 1)
+  0.85 q_stag/q on pi r_o^2 for l > d, treats a lug as closed; a lug of l/d ~ 5
+  passes air.)
 
 All ``CA`` methods are symbolic-safe.
 """
@@ -56,6 +69,7 @@ import numpy as np
 
 from ironbark_opt import _math as m
 from ironbark_opt import validate as v
+from ironbark_opt.aero.base_drag import cd_base
 from ironbark_opt.aero.empirical_drag import stagnation_ratio
 from ironbark_opt.errors import InputError
 
@@ -166,35 +180,74 @@ class RailButtonDrag:
         return total / reference_area
 
 
+def churchill_friction_factor(reynolds, relative_roughness: float):
+    """Darcy friction factor [-] of a pipe at ``reynolds`` [-] (on its diameter) and
+    ``relative_roughness`` eps/D [-], laminar through turbulent in one smooth formula:
+    Churchill, "Friction-factor equation spans all fluid-flow regimes", Chemical
+    Engineering 84(24), 1977: f = 8 [(8/Re)^12 + (A + B)^-1.5]^(1/12),
+    A = [2.457 ln(1 / ((7/Re)^0.9 + 0.27 eps/D))]^16, B = (37530/Re)^16; symbolic-safe.
+    (64/Re below Re ~ 2000; Colebrook's turbulent values within ~1 % above 4000.)"""
+    re = m.fmax(reynolds, 1.0)
+    a = (2.457 * m.log(1.0 / (m.power(7.0 / re, 0.9) + 0.27 * relative_roughness))) ** 16
+    b = m.power(37530.0 / re, 16.0)
+    return 8.0 * m.power(m.power(8.0 / re, 12.0) + m.power(a + b, -1.5), 1.0 / 12.0)
+
+
 @dataclass(frozen=True)
 class LaunchLugDrag:
-    """A launch lug's pressure drag (Niskanen 2013, sec. 3.4.4; module docstring).
+    """A launch lug: an open tube on the body wall (module docstring).
 
     Parameters
     ----------
+    x : float [m]
+        Station of its middle, aft of the nose tip (boundary layer).
     length, outer_radius, inner_radius : float [m]
+    roughness : float [m]
+        Sand-grain roughness of its surfaces (the rocket's finish).
     name : str
     """
 
+    x: float
     length: float
     outer_radius: float
     inner_radius: float
+    roughness: float = 0.0
     name: str = "launch lug"
 
     def __post_init__(self):
-        v.set_fields(self, length=v.positive(self.length, "length"),
-                     outer_radius=v.positive(self.outer_radius, "outer_radius"),
-                     inner_radius=v.nonnegative(self.inner_radius, "inner_radius"))
+        ro = v.positive(self.outer_radius, "outer_radius")
+        ri = v.nonnegative(self.inner_radius, "inner_radius")
+        if not ri < ro:
+            raise InputError(f"inner_radius ({ri} m) must be smaller than outer_radius ({ro} m)",
+                             field="inner_radius")
+        length = v.positive(self.length, "length")
+        k = v.nonnegative(self.roughness, "roughness")
+        if not k < min(length, 2.0 * ri if ri > 0 else length):
+            raise InputError(f"roughness ({k} m) must be smaller than the bore and the length",
+                             field="roughness")
+        v.set_fields(self, x=v.nonnegative(self.x, "x"), length=length, outer_radius=ro,
+                     inner_radius=ri, roughness=k)
 
-    def drag_area(self) -> float:
-        """CD_stag-multiplied area [m^2]: max(1.3 - 0.3 l/d, 1) (pi r_o^2 - pi r_i^2 max(1 - l/d, 0))."""
-        ld = self.length / (2.0 * self.outer_radius)
-        area = math.pi * (self.outer_radius ** 2 - self.inner_radius ** 2 * max(1.0 - ld, 0.0))
-        return max(1.3 - 0.3 * ld, 1.0) * area
+    def q_ratio(self, reynolds_per_m):
+        """Mean q over the lug's height 2 r_o in the body's boundary layer / free-stream q [-]."""
+        h = 2.0 * self.outer_radius
+        return q_height_integral(h, boundary_layer_thickness(self.x, reynolds_per_m)) / h
 
     def CA(self, mach, reynolds_per_m, reference_area: float):
-        """CA [-] on ``reference_area`` [m^2] (no Reynolds dependence); symbolic-safe."""
-        return 0.85 * stagnation_ratio(mach) * (self.drag_area() / reference_area) + 0.0 * reynolds_per_m
+        """CA [-] on ``reference_area`` [m^2]; symbolic-safe."""
+        from ironbark_opt.aero.friction_flatplate import cf_flat_plate
+        ro, ri, length = self.outer_radius, self.inner_radius, self.length
+        ratio = self.q_ratio(reynolds_per_m)
+        speed = m.sqrt(ratio)                                   # local / free-stream velocity
+        mach_local, re_local = mach * speed, m.fmax(reynolds_per_m, 1.0) * speed
+        ca = (0.85 * stagnation_ratio(mach_local) + cd_base(mach_local)) * math.pi * (ro * ro - ri * ri)
+        if ri > 0.0:
+            d = 2.0 * ri
+            f = churchill_friction_factor(re_local * d, self.roughness / d)
+            ca = ca + f * (length / d) * math.pi * ri * ri
+        cf = cf_flat_plate(mach_local, re_local * length, length, self.roughness)
+        ca = ca + cf * 2.0 * math.pi * ro * length
+        return ratio * ca / reference_area
 
 
 def reference_ca(mach: float, reynolds_per_m: float, guides, reference_area: float) -> float:

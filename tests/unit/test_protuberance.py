@@ -12,7 +12,8 @@ from scipy.integrate import quad
 
 from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
 from ironbark_opt.aero.protuberance import (GP_CD, GP_MACH, PIN_CD, LaunchLugDrag, RailButtonDrag,
-                                            boundary_layer_thickness, cylinder_cd)
+                                            boundary_layer_thickness, churchill_friction_factor,
+                                            cylinder_cd)
 from ironbark_opt.errors import InputError
 from ironbark_opt.rocket import RailButtons, load_rocket_toml
 
@@ -81,16 +82,51 @@ def test_button_inside_the_boundary_layer_against_quadrature():
     assert float(f(mach, re)) == pytest.approx(float(b.CA(mach, re, SREF)), rel=1e-13)
 
 
-def test_launch_lug_niskanen():
-    """Niskanen 2013 sec. 3.4.4: l/d >= 1 -> CD = 0.85 q_stag/q on the full circle
-    pi r_o^2; l/d = 0.5 -> 1.15 x on pi (r_o^2 - r_i^2 / 2)."""
-    long = LaunchLugDrag(0.05, 0.005, 0.004)
-    assert float(long.CA(0.0, 1e7, SREF)) == pytest.approx(0.85 * math.pi * 0.005 ** 2 / SREF, rel=1e-12)
-    q2 = 1.84 - 0.76 / 4 + 0.166 / 16 + 0.035 / 64
-    assert float(long.CA(2.0, 1e7, SREF)) == pytest.approx(0.85 * q2 * math.pi * 0.005 ** 2 / SREF, rel=1e-12)
-    short = LaunchLugDrag(0.005, 0.005, 0.004)
-    area = math.pi * (0.005 ** 2 - 0.004 ** 2 * 0.5)
-    assert float(short.CA(0.0, 1e7, SREF)) == pytest.approx(1.15 * 0.85 * area / SREF, rel=1e-12)
+def _colebrook(re, rel):
+    """Colebrook-White by fixed-point iteration (independent of Churchill's fit)."""
+    f = 0.02
+    for _ in range(200):
+        f = (-2.0 * math.log10(rel / 3.7 + 2.51 / (re * math.sqrt(f)))) ** -2
+    return f
+
+
+def test_churchill_friction_factor_against_poiseuille_and_colebrook():
+    for re in (100.0, 500.0, 1500.0):
+        assert float(churchill_friction_factor(re, 0.0)) == pytest.approx(64.0 / re, rel=0.01)
+    for re, rel in ((1e4, 0.0), (1e5, 0.0), (1e5, 0.01), (1e6, 0.001)):
+        assert float(churchill_friction_factor(re, rel)) == pytest.approx(_colebrook(re, rel), rel=0.03)
+
+
+def test_launch_lug_tube():
+    """Outside the boundary layer (station 0.1 mm, Re 1e9 /m: delta 0.5 um): front annulus
+    0.85 q_stag/q + base drag (0.12 + 0.13 M^2 subsonic), bore f (l/d) on pi r_i^2
+    (Colebrook), outer flat-plate friction; hand calculation at Mach 0.3.  Inside it
+    (station 0.3 m, Re 2e6 /m): all of it times the 1/7-power mean q over the height 2 r_o."""
+    from ironbark_opt.aero.friction_flatplate import cf_flat_plate
+    ro, ri, length, k = 0.0035, 0.0025, 0.035, 60e-6
+    mach, re = 0.3, 1e9
+    lug = LaunchLugDrag(1e-4, length, ro, ri, roughness=k)
+    annulus = math.pi * (ro ** 2 - ri ** 2)
+    q = 1 + 0.09 / 4 + 0.0081 / 40
+    f = _colebrook(re * 2 * ri, k / (2 * ri))
+    cf = float(cf_flat_plate(mach, re * length, length, k))
+    free = ((0.85 * q + 0.12 + 0.13 * 0.09) * annulus + f * (length / (2 * ri)) * math.pi * ri ** 2
+            + cf * 2 * math.pi * ro * length) / SREF
+    assert float(lug.CA(mach, re, SREF)) == pytest.approx(free, rel=0.01)
+    deep = LaunchLugDrag(0.3, length, ro, ri, roughness=k)
+    delta = 0.37 * 0.3 / (2e6 * 0.3) ** 0.2
+    ratio = 7.0 / 9.0 * (2 * ro / delta) ** (2.0 / 7.0)
+    assert float(deep.q_ratio(2e6)) == pytest.approx(ratio, rel=1e-12)
+    speed = math.sqrt(ratio)                                        # local Mach, Re inside
+    ml, rl = mach * speed, 2e6 * speed
+    ql = 1 + ml ** 2 / 4 + ml ** 4 / 40
+    inside = ratio * ((0.85 * ql + 0.12 + 0.13 * ml ** 2) * annulus
+                      + _colebrook(rl * 2 * ri, k / (2 * ri)) * (length / (2 * ri)) * math.pi * ri ** 2
+                      + float(cf_flat_plate(ml, rl * length, length, k)) * 2 * math.pi * ro * length) / SREF
+    assert float(deep.CA(mach, 2e6, SREF)) == pytest.approx(inside, rel=0.01)
+    M, R = ca.SX.sym("M"), ca.SX.sym("R")
+    fn = ca.Function("f", [M, R], [deep.CA(M, R, SREF)])
+    assert float(fn(mach, 2e6)) == pytest.approx(float(deep.CA(mach, 2e6, SREF)), rel=1e-12)
 
 
 def test_friction_table_carries_the_guides():

@@ -27,12 +27,19 @@ MEASURED = {"bella_lui": 459.0, "ndrt_2020": 1316.8, "astra": 3250.0, "genesis":
 GOAL_MEDIAN, GOAL_MAX = 3.0, 6.0        # [%]
 
 
-def _apogee(path, table=None):
+def _apogee(path, table=None, guides=True):
     """Apogee AGL [m]; the geometry files fly the flight's own weather file and
-    RocketPy's constant gravity, as the team-curve files do."""
+    RocketPy's constant gravity, as the team-curve files do.  ``guides=False``: without
+    the launch guides' drag (these files give no button size, so the flights assume
+    OpenRocket's default button; printed both ways)."""
+    import contextlib
+    from unittest import mock
+
     from ironbark_opt import load_setup, simulate
-    setup = load_setup(path, table=table) if table is not None else load_setup(path)
-    return simulate(setup).summary_values["apogee_agl_m"]
+    off = mock.patch("ironbark_opt.aero.model.guide_drag", lambda rk: ((), ()))
+    with contextlib.nullcontext() if guides else off:
+        setup = load_setup(path, table=table) if table is not None else load_setup(path)
+        return simulate(setup).summary_values["apogee_agl_m"]
 
 
 @pytest.fixture(scope="module")
@@ -48,23 +55,25 @@ def flights(tmp_path_factory):
         stem = tmp / name
         table.save(stem)
         ours = _apogee(geo, table=str(stem) + ".csv")
+        bare = _apogee(geo, table=str(stem) + ".csv", guides=False)
         team = _apogee(DATA / name / "rocket.toml") if (DATA / name / "rocket.toml").exists() \
             else math.nan
-        out[name] = (ours, team, table.metadata, table)
+        out[name] = (ours, team, table.metadata, table, bare)
     return out
 
 
 @pytest.mark.slow
 def test_five_flights_on_tables_from_geometry(flights):
     errs = []
-    print("\nflight       measured   geometry table  err %    team curve  err %   M_cr")
-    for name, (ours, team, md, _) in flights.items():
+    print("\nflight       measured   geometry table  err %    team curve  err %   M_cr    "
+          "no guide drag  err %")
+    for name, (ours, team, md, _, bare) in flights.items():
         meas = MEASURED[name]
         e = 100 * (ours / meas - 1)
         et = 100 * (team / meas - 1)
         errs.append(abs(e))
         print(f"{name:11s} {meas:9.1f} {ours:12.1f} {e:+8.2f} {team:12.1f} {et:+7.2f}   "
-              f"{md['mach_critical']:.3f}")
+              f"{md['mach_critical']:.3f} {bare:12.1f} {100 * (bare / meas - 1):+8.2f}")
     med, worst = float(np.median(errs)), float(np.max(errs))
     met = med <= GOAL_MEDIAN and worst <= GOAL_MAX
     print(f"median |error| {med:.2f} % (goal {GOAL_MEDIAN}), max {worst:.2f} % (goal {GOAL_MAX})"
@@ -73,7 +82,10 @@ def test_five_flights_on_tables_from_geometry(flights):
     # -3.63, -1.09 %; session 7, supersonic meshes with conical Haack tips, fin roots on
     # meridians, blunt trailing-edge wedges: 0.00, +8.60, -1.20, -3.60, +1.25 %, median
     # 1.25 %; NDRT 2020 over the 6 % goal; session 10, supersonic fin wakes: defiance
-    # +1.24 %, the others unchanged);
+    # +1.24 %, the others unchanged; session 12, launch-guide drag (aero.protuberance, these
+    # files give no button size: OpenRocket's default button assumed, with a warning):
+    # -0.09, +8.34, -2.23, -4.47, +1.24 % (defiance has no buttons), median 2.23 %, without
+    # the guides 0.00, +8.60, -1.20, -3.60, +1.24 %, median 1.24 %);
     # a regression beyond it fails
     assert med <= 3.0 and worst <= 10.0
 
@@ -81,7 +93,7 @@ def test_five_flights_on_tables_from_geometry(flights):
 @pytest.mark.slow
 def test_tables_have_no_zero_lift_thrust(flights):
     """Pressure plus base drag at zero angle of attack is never a thrust, at any Mach."""
-    for name, (_, _, md, table) in flights.items():
+    for name, (_, _, md, table, _) in flights.items():
         assert md["mach_solved_builtin"][-1] >= 2.0, name          # built to Mach 2
         zero_lift = table.values("CA_pressure")[:, 0] + table.values("CA_base")[:, 0]
         print(f"{name}: min zero-lift pressure + base CA {zero_lift.min():+.4f}")

@@ -14,6 +14,10 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
   Mach 0.88 and OpenRocket's nose-cone rise from about Mach 0.7; session 9: APEX +5.9 %,
   its Mach 1.2-2 rows now solved by linear theory (pointed fin tips' closure slivers,
   panair.solver.supersonic._pointed_tip_closure) instead of local inclination).
+- Session 12, the launch guides' drag (ironbark_opt.aero.protuberance; FT1/FT2 carry
+  three 12.4 mm x 14.2 mm buttons, APEX none): FT1 -0.56 -> -2.08 % (OpenRocket +1.89 %:
+  the FT1 goal is NOT MET any more), FT2 +2.53 -> +1.10 %, APEX +5.89 % unchanged;
+  empirical path FT1 +1.17 -> -0.45 %, FT2 +6.41 -> +4.81 %.
 
 Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
 FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).
@@ -62,7 +66,8 @@ def test_logged_flight_from_ork_geometry(name, tmp_path, monkeypatch):
     print(f"\n{name} ({sim_name}): logged {logged:.1f} m; ours (panel table from the .ork) {ours:.1f} m "
           f"({100 * e_ours:+.2f} %); ours empirical {flown['empirical']:.1f} m ({100 * e_emp:+.2f} %); "
           f"OpenRocket stored {stored:.1f} m ({100 * e_or:+.2f} %); "
-          f"{'closer' if abs(e_ours) < abs(e_or) else 'NOT closer'} than OpenRocket")
+          f"{'closer' if abs(e_ours) < abs(e_or) else 'NOT closer'} than OpenRocket"
+          + ("" if bound is not None or abs(e_ours) < abs(e_or) else " (goal NOT MET)"))
     if bound is None:
         assert abs(e_ours) < abs(e_or)
     else:
