@@ -76,8 +76,15 @@ def test_too_short_delay_matches_openrocket(path, index):
     assert s["ejection_time_s"] == pytest.approx(t_burn_or + setup.ejection_delay, abs=0.15)
     # speed at deployment and time of apogee against OpenRocket's stored summary
     summ = sim.summary
-    print(f"  deployment speed {s['ejection_speed_mps']:.2f} m/s (OpenRocket {summ['deployment_speed_mps']:.2f}), "
+    e_speed = s["ejection_speed_mps"] / summ["deployment_speed_mps"] - 1
+    print(f"  deployment speed {s['ejection_speed_mps']:.2f} m/s (OpenRocket {summ['deployment_speed_mps']:.2f}, "
+          f"{100 * e_speed:+.2f} %, tolerance 5 %: {'met' if abs(e_speed) < 0.05 else 'NOT MET'}), "
           f"apogee at {flight.apogee_time:.2f} s (OpenRocket {summ['time_to_apogee_s']:.2f} s)")
+    # measured: session 11, no launch-lug drag: simple 31.77 m/s (-0.6 %), cluster 27.12 m/s
+    # (-1.6 %); session 12, with the lug's drag (ironbark_opt.aero.protuberance; CA 0.050 here
+    # against 0.039 by OpenRocket 24.12's own TubeCalc formula, which scales the lug's face by
+    # an unsourced 0.7 and has no outer friction): simple 29.81 m/s (-6.8 %, NOT MET),
+    # cluster 26.72 m/s (-3.0 %)
     assert s["ejection_speed_mps"] == pytest.approx(summ["deployment_speed_mps"], rel=0.05)
     assert flight.apogee_time == pytest.approx(summ["time_to_apogee_s"], rel=0.03)
 

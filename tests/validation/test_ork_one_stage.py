@@ -38,6 +38,8 @@ def test_every_stored_simulation_flies_within_ten_percent(index, motor_path):
     err = flight.apogee_agl / stored - 1
     print(f"{sim.name} ({setup.motor.designation}, {setup.motor.total_impulse:.1f} N s): apogee "
           f"{flight.apogee_agl:.1f} m, OpenRocket {stored:.1f} m ({100 * err:+.2f} %)")
+    # measured: session 11 -2.77 %, -0.83 %; session 12, with the launch lug's drag (CA 0.034,
+    # OpenRocket 22.02's own closed-cylinder estimate 0.033): -6.36 %, -5.02 %
     assert abs(err) < 0.10
     # the motor is OpenRocket's: total mass and impulse as its stored flight data show them
     data = sim.data()
