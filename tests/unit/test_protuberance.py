@@ -210,3 +210,19 @@ def test_button_fields_round_trip_and_assumed_size_warns(tmp_path):
         model = build_aero_model(bare, table=pressure_drag_table(bare))
     assert model.friction.protuberances[0].outer_diameter == 0.0097
     assert build_aero_model(bare, table=pressure_drag_table(bare), guides=False).friction.protuberances == ()
+
+
+def test_ork_buttons_round_trip_through_the_toml_writer(tmp_path):
+    """FT1's buttons (own size, a third button) written into Calisto's file and read back."""
+    import dataclasses
+
+    from ironbark_opt.openrocket import read_ork
+    from ironbark_opt.openrocket.build import geometry
+    from ironbark_opt.rocket import Rocket, dump_rocket_toml
+    rb = next(c for c in geometry(read_ork(FT1)).components if isinstance(c, RailButtons))
+    f1 = load_rocket_toml(_calisto(tmp_path, ""))
+    r1 = f1.rocket
+    comps = [c for c in r1.components if not isinstance(c, RailButtons)] + [rb]
+    f1 = dataclasses.replace(f1, rocket=Rocket(r1.name, comps, mass_override=r1.mass_override))
+    f2 = load_rocket_toml(dump_rocket_toml(f1, tmp_path / "copy.toml"))
+    assert next(c for c in f2.rocket.components if isinstance(c, RailButtons)) == rb
