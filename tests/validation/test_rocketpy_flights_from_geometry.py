@@ -69,5 +69,9 @@ def test_rocketpy_example_flights_on_tables_from_geometry(tmp_path):
     # measured (session 7): cavour -0.79, andromeda +3.75, erebus -5.69, lince +4.24,
     # juno3 -5.74, prometheus -6.26 % (median 4.97 %, max 6.26 %; the teams' own pre-flight
     # predictions: median 6.65 %, max 8.91 %); session 10, supersonic fin wakes: andromeda
-    # +3.81, prometheus -6.27 %, the others unchanged; a regression beyond it fails
+    # +3.81, prometheus -6.27 %, the others unchanged; session 12, the launch guides' drag
+    # (ironbark_opt.aero.protuberance; no button size in these files: OpenRocket's default
+    # button assumed, with a warning): cavour -1.66, andromeda +3.30, erebus -7.12, lince
+    # +3.12, juno3 -6.07, prometheus -6.76 % (median 4.68 %, max 7.12 %); a regression beyond
+    # it fails
     assert np.median(errs) <= 6.0 and np.max(errs) <= 8.0
