@@ -65,8 +65,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from ironbark_opt import _math as m
 from ironbark_opt import validate as v
 from ironbark_opt.aero.base_drag import cd_base
@@ -248,8 +246,3 @@ class LaunchLugDrag:
         cf = cf_flat_plate(mach_local, re_local * length, length, self.roughness)
         ca = ca + cf * 2.0 * math.pi * ro * length
         return ratio * ca / reference_area
-
-
-def reference_ca(mach: float, reynolds_per_m: float, guides, reference_area: float) -> float:
-    """Sum of the guides' CA [-] at one flight condition (numeric; for reports)."""
-    return float(np.sum([float(g.CA(mach, reynolds_per_m, reference_area)) for g in guides]))
