@@ -31,7 +31,8 @@ against the VM path (``IRONBARK_JIT=vm``) of every command (goal <= 1); ``--firs
 ballast,...`` runs that comparison alone.  Measured (44dd1e9's code, paired, 2-core
 machine shared with other test runs): ``ballast --first-rounds 5`` auto / VM 1.03x wall,
 1.05x CPU at load 3-14 (rounds 0.95-1.08), simulate 0.98x, rank10 1.03x, mc1000 1.01x
-in the same go; 12 rounds of auto, auto without the detached compile's spawn (no
+in the same go; again with 6 rounds at load 6-7: ballast 1.02x wall, 1.01x CPU,
+simulate 0.93x, rank10 1.02x, mc1000 1.01x; 12 rounds of auto, auto without the detached compile's spawn (no
 compiler on PATH) and the VM rotating, load 3.2: auto / VM 0.90x wall, 0.95x CPU,
 no-spawn / VM 0.89x, 0.99x.  In-process (cProfile of fresh processes) the two paths
 differ by the detached compile's hand-off, 2 ms (pickle and spawn), and import the same
