@@ -362,11 +362,9 @@ def _mirror_sides(panels: PanelSet, keep, cen, nrm, fin_r, cen_r=None, nrm_r=Non
     fins = np.unique(panels.network[panels.wake_upper[lifting]])
     planes, x0, tol = _fin_planes(panels, keep, cen, fins)
     flip = np.array([1.0, -1.0, 1.0])
-    twins = [(c * flip, e * flip) for c, e in planes]
-    partner = _coplanar(planes, twins, tol)
-    if not THIN_WING:        # fin k itself only (g's twin is fin k: the same mid-plane point)
-        partner &= np.linalg.norm(np.array([c for c, _ in planes])[:, None]
-                                  - np.array([c for c, _ in twins])[None], axis=-1) < tol
+    # without THIN_WING a fin's only partner is itself, which no twin is (no fin in the mirror plane)
+    partner = (_coplanar(planes, [(c * flip, e * flip) for c, e in planes], tol) if THIN_WING
+               else np.zeros((len(planes), len(planes)), dtype=bool))
     cen_r = cen if cen_r is None else cen_r
     nrm_r = nrm if nrm_r is None else nrm_r
     return _receiver_sides(planes, x0, tol, partner, cen_r * flip, nrm_r * flip, fin_r,
