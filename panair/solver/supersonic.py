@@ -317,7 +317,8 @@ def _receiver_sides(planes, x0, tol, partner, cen_r, nrm_r, fin_r, mirrored=Fals
     coplanar partner, anywhere (the plane through both fins and the axis splits the
     body, e.g. a wing on a body), the side of the plane it is on (0 within tol of
     the plane); everything else 0.  ``mirrored``: the receivers are mirror images
-    and partner[k, g] means g's twin (:func:`_mirror_sides`)."""
+    and partner[k, g] means g's twin (:func:`_mirror_sides`; a half model has no fin
+    in the mirror plane, so any such partner is another fin)."""
     recv = np.zeros((len(planes), len(cen_r)))
     body = fin_r < 0
     g = np.maximum(fin_r, 0)
@@ -327,9 +328,7 @@ def _receiver_sides(planes, x0, tol, partner, cen_r, nrm_r, fin_r, mirrored=Fals
         radial = c0 * np.array([0.0, 1.0, 1.0])
         radial /= max(float(np.linalg.norm(radial)), 1e-300)
         paired = bool(np.any(partner[k] if mirrored else np.delete(partner[k], k)))
-        # a half model's mirror images in the fin's own half: not sided (see _mirror_sides)
-        own_half = (cen_r @ radial > tol) & (not mirrored)
-        half = own_half | (paired & (cen_r @ radial < -tol))
+        half = (cen_r @ radial > tol) | (paired & (cen_r @ radial < -tol))
         near = body & half & (cen_r[:, 0] >= x0[k])
         dist = (cen_r - c0) @ e_t
         across = np.where(np.abs(dist) > tol, np.sign(dist), 0.0)
@@ -344,26 +343,32 @@ def _mirror_sides(panels: PanelSet, keep, cen, nrm, fin_r, cen_r=None, nrm_r=Non
     each source's value at the receiver's mirror image (the source's twin acting on
     the receiver), which a fin separates as it would in the full model.  The mirror
     image of fin g's face is a face of g's twin: sided where that twin is fin k's
-    coplanar partner.
+    partner in the full model (:func:`_partners`: with THIN_WING a coplanar fin,
+    without it fin k itself, which no twin is: a half model has no fin in its mirror
+    plane, :func:`panair.mesh.mesh_rocket`).  A body receiver's mirror image is sided
+    by the full model's rule, in fin k's half of the cross-section (and, where fin k
+    has a coplanar partner, the other half too).
 
-    Body receivers' mirror images are sided in fin k's coplanar partner's half of
-    the cross-section (where that partner is fin k's twin: a fin pair in the y
-    direction, whose wake sheets then keep their jump as in the full model), not in
-    fin k's own half: the half model's behaviour before the coplanar partners, which
-    differs from the full model's solution (Basic Finner, Mach 1.6: CN-alpha 12.97
-    /rad half, 13.17 full; PANAIR 13.05).  Siding those too makes the two agree but
-    moves the Basic Finner's Cm-alpha at Mach 1.293 from +11 % to +16 % of the range
-    data (tolerance 15 %): a separate change, left for review."""
-    net = panels.network[keep]
+    Without these sides (before session 12 the default solver had none, THIN_WING
+    none in fin k's own half) a twin fin's far face acted through that fin on the
+    body panels of its half of the cross-section that lie in the half model (near
+    the mirror plane), which the full model does not allow: CN-alpha half / full
+    Basic Finner Mach 1.293 16.67 / 17.21 /rad, 1.6 12.97 / 13.17 (PANAIR 13.05),
+    Kestrel Mach 1.3 -5.2 %.  With them the two agree to rounding (5e-13) given the
+    same surface-gradient stencil; the full mesh has no gradient neighbour across its
+    seam (in the mirror plane) where the half model has the mirror image, which leaves
+    CN-alpha 2e-4 .. 1e-3 apart (tests/unit/test_panair_mirror.py)."""
     lifting = ~panels.wake_at_base
     fins = np.unique(panels.network[panels.wake_upper[lifting]])
     planes, x0, tol = _fin_planes(panels, keep, cen, fins)
     flip = np.array([1.0, -1.0, 1.0])
-    twins = [(c * flip, e * flip) for c, e in planes]
+    # without THIN_WING a fin's only partner is itself, which no twin is (no fin in the mirror plane)
+    partner = (_coplanar(planes, [(c * flip, e * flip) for c, e in planes], tol) if THIN_WING
+               else np.zeros((len(planes), len(planes)), dtype=bool))
     cen_r = cen if cen_r is None else cen_r
     nrm_r = nrm if nrm_r is None else nrm_r
-    return _receiver_sides(planes, x0, tol, _coplanar(planes, twins, tol), cen_r * flip,
-                           nrm_r * flip, fin_r, mirrored=True)
+    return _receiver_sides(planes, x0, tol, partner, cen_r * flip, nrm_r * flip, fin_r,
+                           mirrored=True)
 
 
 def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
@@ -546,7 +551,7 @@ class SupersonicSolver:
         # a half model adds each source's value at the receiver's mirror image: those
         # pairs are separated by the fin sides of the mirror images (_mirror_sides)
         recv_m = _mirror_sides(panels, keep, cen, nrm, _fin_index(panels, keep)) \
-            if THIN_WING and panels.symmetric and len(sides[0]) else None
+            if panels.symmetric and len(sides[0]) else None
         # fin wakes where the body continues behind a fin (:mod:`.supersonic_wake`):
         # two-faced source sheets, unknowns after the panels' (m of them)
         self._m = m = len(cen)
