@@ -296,6 +296,8 @@ def cached_library(name: str, key: str, cache_dir: Path | None = None) -> ca.Fun
     lib = (Path(cache_dir) if cache_dir else default_cache_dir()) / f"{name}_{key}.so"
     if _compiler() is None or not lib.exists():
         return None
+    from ironbark_opt.dynamics.cache_limit import touch
+    touch(lib)                                     # used now: the last the size limit deletes
     return ca.external(name, str(lib))
 
 

@@ -11,7 +11,9 @@ the discretisation settings, the CasADi version and the source of every
 compiled model is found without generating its C code again.
 
 Files: ``$IRONBARK_CACHE_DIR/models/<key>.pkl`` (written atomically; a file
-that cannot be read is ignored and rebuilt).  ``IRONBARK_MODEL_CACHE=0``
+that cannot be read is ignored and rebuilt); models and compiled libraries
+together are kept under ``IRONBARK_CACHE_MAX_MB`` (least recently used deleted
+first, :mod:`~ironbark_opt.dynamics.cache_limit`).  ``IRONBARK_MODEL_CACHE=0``
 switches the cache off.
 """
 from __future__ import annotations
@@ -25,6 +27,7 @@ from typing import Mapping
 
 import casadi as ca
 
+from ironbark_opt.dynamics import cache_limit
 from ironbark_opt.dynamics.integrator import cache_root
 
 _FORMAT = 1
@@ -80,6 +83,7 @@ def load(key: str | None, *, lazy: bool = False) -> Mapping | None:
     try:
         with open(_path(key), "rb") as fh:
             doc = pickle.load(fh)
+        cache_limit.touch(_path(key))              # used now: the last the size limit deletes
         if lazy:
             return LazyFunctions(doc)
         return {k: ca.Function.deserialize(v) if isinstance(v, str) else v for k, v in doc.items()}
@@ -142,7 +146,8 @@ def store(key: str | None, items: dict) -> None:
             pickle.dump(doc, fh, protocol=pickle.HIGHEST_PROTOCOL)
         os.replace(tmp, path)
     except OSError:
-        pass                   # a read-only cache only costs the next build
+        return                 # a read-only cache only costs the next build
+    cache_limit.prune(cache_root(), keep=path)
 
 
 def compile_detached(model) -> None:
