@@ -32,10 +32,11 @@ Likewise ``CN = CN_pressure + CN_crossflow`` and ``Cm = Cm_pressure +
 Cm_crossflow``: a potential solution has no viscous cross-flow, the
 non-linear body lift that dominates at large angles of attack.  It is the
 viscous cross-flow model of Allen & Perkins (NACA TR 1048, 1951; as
-Jorgensen, NASA TR R-474, 1977, eq. 1: CN = eta Cdc (A_plan/A_ref)
-sin^2 alpha at the body planform's centroid), with eta Cdc = K = 1.1 as in
-the rest of Ironbark (Galejs; :func:`ironbark_opt.aero.barrowman.body_lift`).
-It has zero slope at alpha = 0, so CN-alpha and the static margin are the
+Jorgensen, NASA TR R-474, 1977, eq. 1: CN = eta(l/d) Cdc(M sin alpha)
+(A_plan/A_ref) sin^2 alpha at the body planform's centroid,
+:mod:`ironbark_opt.aero.crossflow`), as in the rest of Ironbark
+(:func:`ironbark_opt.aero.barrowman.body_lift`; ``crossflow_k``: Galejs'
+constant K instead of eta Cdc).  It has zero slope at alpha = 0, so CN-alpha and the static margin are the
 panel solution's.
 
 Blunt (square, rounded) fin leading edges are superinclined for linear
@@ -76,7 +77,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from ironbark_opt.aero.barrowman import BODY_LIFT_K, body_lift
+from ironbark_opt.aero.barrowman import body_lift
+from ironbark_opt.aero.crossflow import eta as crossflow_eta
 from ironbark_opt.errors import InputError, SolverError
 
 from .a502 import find_panair, run_panair
@@ -86,7 +88,8 @@ from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
 from .solver.panels import mirror_plane
 
-__all__ = ["sweep_pressure", "build_table", "body_planform", "SEA_LEVEL_RE_PER_M_PER_MACH"]
+__all__ = ["sweep_pressure", "build_table", "body_planform", "body_fineness",
+           "SEA_LEVEL_RE_PER_M_PER_MACH"]
 
 #: rho0 a0 / mu0 of the ICAO standard atmosphere at sea level [1/m per unit Mach]
 SEA_LEVEL_RE_PER_M_PER_MACH = 1.225 * 340.294 / 1.7894e-5
@@ -102,6 +105,12 @@ def body_planform(body) -> tuple[float, float]:
     xc = x[:-1] + w * (r[:-1] + 2 * r[1:]) / (3 * np.maximum(r[:-1] + r[1:], 1e-300))
     moment = float(np.sum(w * (r[1:] + r[:-1]) * xc))
     return area, moment / area
+
+
+def body_fineness(body) -> float:
+    """Fineness ratio [-] of a body of revolution: length over maximum diameter."""
+    x, r = np.asarray(body.x, float), np.asarray(body.r, float)
+    return float((x[-1] - x[0]) / (2.0 * np.max(r)))
 
 
 def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.ndarray:
@@ -497,7 +506,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                 options: MeshOptions | None = None, workers: int = 2, progress: bool = True,
                 use_panair: bool = False, pressure_rule: str = "second-order",
                 extra_metadata: dict | None = None, executor=None,
-                crossflow_k: float = BODY_LIFT_K, subsonic_pressure=None,
+                crossflow_k: float | None = None, subsonic_pressure=None,
                 friction_in_table: bool = False, alpha_extend_deg=ALPHA_EXTEND_DEG,
                 checkpoint_dir=None, pool=None):
     """Sweep -> AeroTable with the transonic, separated-flow, viscous and base parts.
@@ -515,8 +524,10 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     symmetric, options, workers, progress, use_panair, pressure_rule, executor
         As in :func:`sweep_pressure`.
     extra_metadata : dict, optional
-    crossflow_k : float [-]
-        Viscous cross-flow coefficient eta Cdc of the body (0: none).
+    crossflow_k : float or None [-]
+        None: the body's viscous cross-flow eta(l/d) Cdc(M sin alpha) of Allen &
+        Perkins / Jorgensen; a number: that constant in place of eta Cdc
+        (Galejs' K = 1.1 was the default before session 13; 0: none).
     subsonic_pressure : callable mach -> CA [-], optional
         Zero-lift pressure drag below the critical Mach number (separated flow and
         edges, e.g. :func:`ironbark_opt.aero.empirical_drag.separated_pressure_ca`);
@@ -542,7 +553,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     from ironbark_opt import __version__
     from ironbark_opt.aero.table import AeroTable
     from .transonic import body_critical_mach, fin_critical_mach, zero_lift_pressure
-    if not (math.isfinite(crossflow_k) and crossflow_k >= 0):
+    if crossflow_k is not None and not (math.isfinite(crossflow_k) and crossflow_k >= 0):
         raise InputError(f"crossflow_k must be >= 0, got {crossflow_k}", field="crossflow_k")
     alpha = np.asarray(alpha, float)
     if len(alpha) == 0 or abs(alpha[0]) > 1e-12:
@@ -621,10 +632,12 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
         ones = np.ones((1, n_a))
     cn_x = np.zeros((len(mach), n_a))
     cm_x = np.zeros((len(mach), n_a))
-    if crossflow_k > 0:
+    fineness = body_fineness(geometry.body)
+    if crossflow_k is None or crossflow_k > 0:
         a_plan, x_plan = body_planform(geometry.body)
-        cn_a, _ = body_lift(alpha, a_plan, x_plan, sref, k=crossflow_k)
-        cn_x = np.ones((len(mach), 1)) * np.asarray(cn_a)[None, :]
+        cn_x, _ = body_lift(alpha[None, :], a_plan, x_plan, sref, mach=mach[:, None],
+                            fineness_ratio=fineness, k=crossflow_k)
+        cn_x = np.asarray(cn_x, float) * np.ones((len(mach), n_a))
         cm_x = -cn_x * (x_plan - xref) / lref
         includes.append("crossflow")
     f_in = ca_f[:, None] * ones if friction_in_table else 0.0 * ones
@@ -656,9 +669,13 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
             **({"base_drag_model": getattr(base_drag, "model", type(base_drag).__name__),
                 "base_jet_area_m2": float(getattr(base_drag, "jet_area", 0.0))}
                if base_drag is not None else {}),
-            "crossflow_model": (f"viscous cross-flow, Allen & Perkins (NACA TR 1048): CN = K "
-                                f"(A_plan/A_ref) sin^2 alpha at the planform centroid, K = "
-                                f"{crossflow_k:g}"),
+            "crossflow_model": (("viscous cross-flow, Allen & Perkins (NACA TR 1048) as Jorgensen "
+                                 "(NASA TR R-474 eq. 1): CN = eta(l/d) Cdc(M sin alpha) (A_plan/A_ref) "
+                                 f"sin^2 alpha at the planform centroid, l/d = {fineness:.4g}, eta = "
+                                 f"{crossflow_eta(fineness):.4g}, Cdc subcritical (ironbark_opt.aero.crossflow)")
+                                if crossflow_k is None else
+                                (f"viscous cross-flow with a constant coefficient: CN = K (A_plan/A_ref) "
+                                 f"sin^2 alpha at the planform centroid, K = {crossflow_k:g}")),
             "alpha_deg_high_angle_model": [round(math.degrees(a), 6) for a in ext],
             "high_angle_model": "potential part continued with Jorgensen's shape sin 2a cos(a/2), "
                                 "CA with cos^2 a (NASA TR R-474 eq. 1-2), plus the cross-flow",

@@ -14,7 +14,7 @@ v13.05, 2013, ch. 3.
 Choices:
 
 * ``CN_alpha`` is the **linear** part only (slope at alpha = 0); a body tube
-  has none, its large-angle lift is :func:`body_lift`.
+  has none, its large-angle lift is :func:`body_lift` (viscous cross-flow).
 * Symbolic-safe in ``mach`` (floats, NumPy, CasADi SX/MX); geometry is plain
   floats checked with :class:`~ironbark_opt.errors.InputError`.
 * Fin slope: Diederich/Barrowman with beta = sqrt(1 - M^2) ([N13] eq. 3.40)
@@ -41,6 +41,7 @@ from typing import NamedTuple, Sequence
 import numpy as np
 
 from ironbark_opt import _math as m
+from ironbark_opt.aero import crossflow
 from ironbark_opt.errors import InputError
 from ironbark_opt.validate import nonnegative as _non_negative
 from ironbark_opt.validate import number as _number
@@ -198,16 +199,21 @@ def body_tube(x_fore: float, length: float, radius: float) -> Lift:
 
 
 BODY_LIFT_K = 1.1
-"""Cross-flow coefficient K of :func:`body_lift` (Galejs, as [N13] eq. 3.26)."""
+"""Galejs' constant cross-flow coefficient K ([N13] eq. 3.26), for ``body_lift(k=...)``."""
 
 
 def body_lift(alpha, planform_area: float, planform_centroid_x: float,
-              reference_area: float, k: float = BODY_LIFT_K):
-    """Non-linear body lift CN = K (A_plan/A_ref) sin^2(alpha) at the planform centroid.
+              reference_area: float, *, mach=0.0, fineness_ratio: float | None = None,
+              k: float | None = None):
+    """Non-linear (viscous cross-flow) body lift at the planform centroid.
 
-    R. Galejs, "Wind instability - what Barrowman left out" (NAR Sentinel
-    39), as [N13] eq. 3.26 with K = 1.1.  Zero slope at alpha = 0, so not
-    part of :class:`Lift`.  Symbolic-safe in ``alpha``.
+    By default Allen & Perkins' viscous cross-flow as Jorgensen (NASA TR R-474,
+    eq. 1): CN = eta(l/d) Cdc(M sin alpha) (A_plan/A_ref) sin^2(alpha), see
+    :mod:`ironbark_opt.aero.crossflow`.  With ``k``: the constant-coefficient
+    form CN = K (A_plan/A_ref) sin^2(alpha) of R. Galejs, "Wind instability -
+    what Barrowman left out" (NAR Sentinel 39), as [N13] eq. 3.26 (K = 1.1,
+    :data:`BODY_LIFT_K`).  Zero slope at alpha = 0, so not part of :class:`Lift`.
+    Symbolic-safe in ``alpha`` and ``mach``.
 
     Parameters
     ----------
@@ -218,15 +224,25 @@ def body_lift(alpha, planform_area: float, planform_centroid_x: float,
     planform_centroid_x : float [m]
         Its centroid, aft of the nose tip.
     reference_area : float [m^2]
-    k : float [-]
-        Cross-flow coefficient.
+    mach : float, array or CasADi [-]
+        Free-stream Mach number (the cross-flow Mach number is M sin alpha).
+    fineness_ratio : float [-]
+        Body length over maximum diameter; needed unless ``k`` is given.
+    k : float or None [-]
+        Constant cross-flow coefficient (Galejs) instead of eta Cdc.
 
     Returns (CN [-], x_cp [m]).
     """
     a_plan = _non_negative(planform_area, "planform_area", "m^2")
     aref = _positive(reference_area, "reference_area", "m^2")
-    s = m.sin(alpha)
-    return k * a_plan / aref * s * s, _number(planform_centroid_x, "planform_centroid_x")
+    x_cp = _number(planform_centroid_x, "planform_centroid_x")
+    if k is not None:
+        s = m.sin(alpha)
+        return _non_negative(k, "k", "") * a_plan / aref * s * s, x_cp
+    if fineness_ratio is None:
+        raise InputError("the viscous cross-flow needs the body's fineness ratio (or a constant k)",
+                         field="fineness_ratio")
+    return crossflow.normal_force(alpha, mach, a_plan, aref, fineness_ratio), x_cp
 
 
 # ---------------------------------------------------------------- fin planforms

@@ -10,10 +10,12 @@ Sources, in order of precedence for each coefficient:
   required).  The launch guides' drag (:mod:`.protuberance`) goes with the friction.
 - **Normal force CN and pitching moment Cm**: the table's ``CN``/``Cm`` when
   present; otherwise the Barrowman baseline (:mod:`.barrowman`) with
-  ``CN = CN_alpha(M) sin(alpha)`` plus Galejs' body lift
-  ``K (A_plan/A_ref) sin^2(alpha)`` (Galejs, "Wind instability — what
-  Barrowman left out", NAR Sentinel 39; Niskanen 2013, eq. 3.26) so the
-  normal force stays physical at large angles of attack near apogee.
+  ``CN = CN_alpha(M) sin(alpha)`` plus the body's viscous cross-flow
+  ``eta(l/d) Cdc(M sin alpha) (A_plan/A_ref) sin^2(alpha)`` (Allen & Perkins,
+  NACA Report 1048; Jorgensen, NASA TR R-474 eq. 1; :mod:`.crossflow`) at the
+  planform centroid, so the normal force stays physical at large angles of
+  attack (rail exit in wind, near apogee); ``body_lift_k`` replaces eta Cdc by
+  Galejs' constant K (NAR Sentinel 39; Niskanen 2013, eq. 3.26).
 - **Damping**: pitch/yaw ``Cmq`` about the current CG and roll ``Clp`` and
   cant forcing from :mod:`.damping`, always from geometry.
 
@@ -29,7 +31,7 @@ import casadi as ca
 import numpy as np
 
 from ironbark_opt import _math as m
-from ironbark_opt.aero import barrowman, damping
+from ironbark_opt.aero import barrowman, crossflow, damping
 from ironbark_opt.aero.base_drag import BaseDrag
 from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
 from ironbark_opt.errors import InputError
@@ -59,8 +61,9 @@ class LiftGeometry:
 
     bodies: tuple            # of barrowman.Lift
     fins: tuple              # of FinGeometry
-    planform_area: float     # [m^2] body side projection, for Galejs' body lift
+    planform_area: float     # [m^2] body side projection, for the viscous cross-flow
     planform_centroid_x: float  # [m]
+    fineness_ratio: float    # [-] body length / maximum diameter (cross-flow eta)
 
     def components(self, mach, reference_area: float):
         """Barrowman Lift components at ``mach`` (symbolic-safe)."""
@@ -91,6 +94,10 @@ class AeroModel:
     jet_relief : BaseDrag or None
         Base drag of the exhaust's share of the base, taken off CA while the
         motor burns when the table's base drag was built without a jet.
+    body_lift_k : float or None [-]
+        None: the body's viscous cross-flow is Allen & Perkins / Jorgensen's
+        (:mod:`ironbark_opt.aero.crossflow`); a number: Galejs' constant K
+        (:func:`~ironbark_opt.aero.barrowman.body_lift`, 1.1 before session 13).
     """
 
     reference_area: float
@@ -100,7 +107,7 @@ class AeroModel:
     table: object = None
     friction: FrictionDrag | None = None
     base: BaseDrag | None = None
-    body_lift_k: float = barrowman.BODY_LIFT_K
+    body_lift_k: float | None = None
     includes: tuple = field(default=())
     jet_relief: BaseDrag | None = None
     jet_area_source: str = ""
@@ -221,7 +228,11 @@ class AeroModel:
         x_cp = s1 / s0
         s = m.sin_angle(alpha)
         cn_lin = s0 * s
-        cn_body = self.body_lift_k * self.lift.planform_area / self.reference_area * s * s
+        if self.body_lift_k is not None:
+            cn_body = self.body_lift_k * self.lift.planform_area / self.reference_area * s * s
+        else:
+            cn_body = crossflow.normal_force(alpha, mach, self.lift.planform_area, self.reference_area,
+                                             self.lift.fineness_ratio)
         cn = cn_lin + cn_body
         d = self.reference_length
         cm = -(cn_lin * (x_cp - self.moment_reference_x)
@@ -304,7 +315,8 @@ def lift_geometry(rocket) -> LiftGeometry:
         fins.append(FinGeometry(plan, fs.count, fs.x, r_body, fs.cant, fs.section_lift))
     if not bodies and not fins:
         raise InputError("the rocket has no nose, transition or fins: no normal force", field="components")
-    return LiftGeometry(tuple(bodies), tuple(fins), plan_area, plan_moment / plan_area if plan_area else 0.0)
+    return LiftGeometry(tuple(bodies), tuple(fins), plan_area, plan_moment / plan_area if plan_area else 0.0,
+                        rocket.fineness())
 
 
 def _own_roughness(component, default: float) -> float:

@@ -94,7 +94,7 @@ def _booster_lift_and_friction(aero, booster, count: int, x0: float, roughness: 
     plan_core, plan_b = aero.lift.planform_area, count * lg.planform_area
     lift = LiftGeometry(aero.lift.bodies + bodies, aero.lift.fins + fins, plan_core + plan_b,
                         (plan_core * aero.lift.planform_centroid_x + plan_b * (lg.planform_centroid_x + x0))
-                        / (plan_core + plan_b))
+                        / (plan_core + plan_b), aero.lift.fineness_ratio)
     fr = aero.friction
     extra = tuple(dataclasses.replace(c, name=f"{booster.name} {c.name} x{count}", wetted_area=count * c.wetted_area)
                   for c in friction_components(booster, roughness))

@@ -212,15 +212,18 @@ def test_symbolic_numeric_drift(sym):
     assert all(np.isfinite(float(jac(mm, 1.5))) for mm in machs)
 
 
-def test_body_lift_symbolic_and_numeric():
+def test_body_lift_constant_k_symbolic_and_numeric():
+    """Galejs' constant-K form (the ``k`` option), [N13] eq. 3.26."""
     a = ca.SX.sym("a")
-    cn, x = b.body_lift(a, 0.3, 1.2, AREF)
+    cn, x = b.body_lift(a, 0.3, 1.2, AREF, k=b.BODY_LIFT_K)
     f = ca.Function("f", [a], [cn])
     for al in (0.0, 0.1, 0.5, 1.5):
         ref = 1.1 * 0.3 / AREF * math.sin(al) ** 2
         assert float(f(al)) == pytest.approx(ref, rel=1e-12, abs=1e-15)
-        assert b.body_lift(al, 0.3, 1.2, AREF)[0] == pytest.approx(ref, rel=1e-12, abs=1e-15)
+        assert b.body_lift(al, 0.3, 1.2, AREF, k=1.1)[0] == pytest.approx(ref, rel=1e-12, abs=1e-15)
     assert x == 1.2
+    with pytest.raises(InputError, match="fineness"):
+        b.body_lift(0.1, 0.3, 1.2, AREF)
 
 
 # --- bad input ---------------------------------------------------------------------------

@@ -12,7 +12,13 @@ evaluated at the same two angles.  Goal (issue 13): CA0 within 10 %, CN-alpha wi
 10 %, CP within 0.3 caliber at every Mach number, all five fin sets.
 
 Measured (session 10): 0, 0, 4, 2, 3 of 8 Mach numbers meet all three goals (fins
-1, 5, 9, 10, 12; session 9: 0, 0, 1, 3, 2).  The supersonic CP, 0.2-1.0 cal forward
+1, 5, 9, 10, 12; session 9: 0, 0, 1, 3, 2).  Session 13, the body's viscous cross-flow of Allen &
+Perkins / Jorgensen (eta(l/d = 12) Cdc(M sin alpha) = 0.70 x 1.20 at these angles) in
+place of Galejs' K = 1.1: the secant CN-alpha falls by 0.19-0.20 /rad on every fin set
+(the cross-flow's share at 3-4 deg, 0.94 -> 0.72 /rad), CP within 0.02 cal (0.12 on the
+local-inclination rows), CA0 unchanged; subsonic CN-alpha fin 1 +26.1 / +36.0 ->
++22.3 / +32.1 %, fin 5 +23.1 / +37.4 -> +20.9 / +35.2 %, fin 10 +0.9 / +1.4 -> -1.7 /
+-1.2 %; goals met unchanged (0, 0, 4, 2, 3).  The supersonic CP, 0.2-1.0 cal forward
 of the tunnel on every fin set in session 9, was the afterbody (2.2-2.6 cal of body
 behind the fins): the supersonic solver had no fin wake, so the fins' potential
 jump died out on the body behind them and the afterbody carried a download

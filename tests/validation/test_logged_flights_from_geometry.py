@@ -13,7 +13,11 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
   boost runs through Mach 0.95-1.1 where our transonic rise starts at the fins' critical
   Mach 0.88 and OpenRocket's nose-cone rise from about Mach 0.7; session 9: APEX +5.9 %,
   its Mach 1.2-2 rows now solved by linear theory (pointed fin tips' closure slivers,
-  panair.solver.supersonic._pointed_tip_closure) instead of local inclination).
+  panair.solver.supersonic._pointed_tip_closure) instead of local inclination; session 13,
+  the body's viscous cross-flow of Allen & Perkins / Jorgensen in place of K = 1.1: FT1
+  -0.56 -> -0.61 %, FT2 +2.53 -> +2.05 %, APEX +5.89 -> +5.86 % on the panel tables;
+  empirical FT1 +1.17 -> +1.10 %, FT2 +6.41 -> +5.79 %, APEX +8.37 -> +8.32 %, measured
+  without the guides' drag).
 - Session 12, the launch guides' drag (ironbark_opt.aero.protuberance; FT1/FT2 carry
   three 12.4 mm x 14.2 mm buttons, APEX none): FT1 -0.56 -> -2.08 % (OpenRocket +1.89 %:
   the FT1 goal is NOT MET any more), FT2 +2.53 -> +1.10 %, APEX +5.89 % unchanged;
