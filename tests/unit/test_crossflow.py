@@ -83,3 +83,17 @@ def test_aero_model_uses_it_and_keeps_the_constant_k_option():
     galejs = replace(aero, body_lift_k=1.1)
     k_body = 1.1 * aero.lift.planform_area / aero.reference_area * math.sin(al) ** 2
     assert float(galejs.normal(mach, al)[0]) == pytest.approx(lin + k_body, rel=1e-12)
+
+
+def test_curves_against_independent_readings_of_the_same_figures():
+    """eta(l/d) against an independent digitisation of [J77]'s eta figure (AeroSandbox's
+    fit ``jorgensen_eta``, 1 - 23.00906/(x + 122.769) - (13.00645/(x + 24.3676))^2, values
+    worked out here, not its code) to 0.01; Cdc(M_c) against Gowen & Perkins' cylinder
+    points as OpenRocket 23.09 transcribed them (aero.protuberance.GP_MACH/GP_CD, the
+    rail buttons' source) to 0.1 (two readings of the figures, a few percent each)."""
+    from ironbark_opt.aero.protuberance import GP_CD, GP_MACH
+    for x in (1.0, 2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 16.0, 20.0, 24.0, 28.0, 32.0, 40.0):
+        ref = 1 - 23.009059965179222 / (x + 122.76900250914575) - (13.006453125841258 / (x + 24.367562360344193)) ** 2
+        assert xf.eta(x) == pytest.approx(ref, abs=0.01)
+    for mach, cd in zip(GP_MACH, GP_CD):
+        assert float(xf.cdc(mach)) == pytest.approx(cd, abs=0.1)
