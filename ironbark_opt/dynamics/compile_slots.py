@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import tempfile
 from pathlib import Path
 
@@ -72,7 +73,6 @@ def _own_dir(path: Path) -> Path | None:
         st = path.lstat()
     except OSError:
         return None
-    import stat
     if not stat.S_ISDIR(st.st_mode) or (hasattr(os, "getuid") and st.st_uid != os.getuid()):
         return None
     return path
