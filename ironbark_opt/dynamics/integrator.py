@@ -319,9 +319,11 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
     cached one is loaded without generating code at all.
 
     ``background``: when the library is not cached yet, start the compiler in a
-    detached process (it outlives this one and renames its output into place
-    atomically) and return ``func`` itself, the VM, meanwhile.  Falls back to
-    ``func`` when no compiler exists or compiling fails.
+    detached process (:func:`_compile_detached`: it outlives this one, starts once
+    this one has exited, and renames its output into place atomically; within the
+    machine-wide cap on background compiles, and without a free slot it gives up
+    and the next call starts it again) and return ``func`` itself, the VM,
+    meanwhile.  Falls back to ``func`` when no compiler exists or compiling fails.
 
     ``extra``: a callable returning more Functions generated into the same
     library (called only when code is generated), e.g. the Jacobian
@@ -356,12 +358,7 @@ def compile_function(func: ca.Function, cache_dir: Path | None = None, *, key: s
             _compile_detached(cc, src_path, lib)
             return func
         tmp_lib = Path(tmp) / lib.name
-        for flags in (CFLAGS, FALLBACK_CFLAGS):
-            cmd = [cc, *flags, "-shared", "-fPIC", str(src_path), "-o", str(tmp_lib), "-lm"]
-            proc = subprocess.run(cmd, capture_output=True, text=True)
-            if proc.returncode == 0:
-                break
-        else:
+        if not _run_compiler(cc, src_path, tmp_lib):
             return func
         staged = cache / f".{lib.name}.{os.getpid()}.tmp"
         shutil.copyfile(tmp_lib, staged)
@@ -394,8 +391,21 @@ def _after_parent_sh() -> str:
             "do sleep 0.1; i=$((i+1)); done; ")
 
 
+def _run_compiler(cc: str, src: Path, out: Path) -> bool:
+    """Compile the C file ``src`` to the shared library ``out`` with :data:`CFLAGS`, or
+    :data:`FALLBACK_CFLAGS` if the compiler refuses them; True when it succeeded."""
+    for flags in (CFLAGS, FALLBACK_CFLAGS):
+        cmd = [cc, *flags, "-shared", "-fPIC", str(src), "-o", str(out), "-lm"]
+        if subprocess.run(cmd, capture_output=True, text=True).returncode == 0:
+            return True
+    return False
+
+
 def _compile_detached(cc: str, src: Path, lib: Path) -> None:
-    """Compile ``src`` to ``lib`` in a detached, low-priority process (at most one per library)."""
+    """Compile ``src`` to ``lib`` in a detached, lowest-priority process (:func:`run_detached`:
+    after this process exits, within the machine-wide cap on background compiles), at
+    most one per library: its source is copied to the marker ``.<lib stem>.c``, and a
+    marker younger than ``_PENDING_S`` means a compile is already under way."""
     import time
     pending = lib.with_name(f".{lib.stem}.c")
     try:
@@ -404,17 +414,19 @@ def _compile_detached(cc: str, src: Path, lib: Path) -> None:
         shutil.copyfile(src, pending)
     except OSError:
         return
+    run_detached("ironbark_opt.dynamics.integrator:_compile_source", [cc, str(pending), str(lib)], [pending])
+
+
+def _compile_source(cc: str, src: str, lib: str) -> None:
+    """:func:`_compile_detached`'s child: compile ``src`` next to ``lib`` and rename the
+    result into place (atomic: never a half-written library); a failure leaves nothing."""
+    lib = Path(lib)
     staged = lib.with_name(f".{lib.name}.{os.getpid()}.tmp")
-    compile_ = '"$0" {} -shared -fPIC "$1" -o "$2" -lm'
-    script = (_LOWEST_GROUP_SH + _after_parent_sh() + f'({compile_.format(" ".join(CFLAGS))} || {compile_.format(" ".join(FALLBACK_CFLAGS))})'
-              ' && mv -f "$2" "$3"; rm -f "$1" "$2"')
-    nice = shutil.which("nice")
-    cmd = ([nice, "-n", "10"] if nice else []) + ["sh", "-c", script, cc, str(pending), str(staged), str(lib)]
     try:
-        subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                         start_new_session=True, close_fds=True)
-    except OSError:
-        pending.unlink(missing_ok=True)
+        if _run_compiler(cc, Path(src), staged):
+            os.replace(staged, lib)
+    finally:
+        staged.unlink(missing_ok=True)
 
 
 def _claim(pending: Path) -> bool:
@@ -432,18 +444,42 @@ def _claim(pending: Path) -> bool:
 
 
 def run_detached(target: str, args: list[str], cleanup: list[Path]) -> None:
-    """Call ``target`` (``"module:function"``) with ``args`` (strings) in a detached Python
-    process at the lowest priority (own session, ``nice``, its autogroup at nice 19),
-    which outlives this one.  It deletes the files ``cleanup`` (the compile's marker,
-    written by the caller with :func:`_claim`, and its inputs) when done, whatever
-    happens; if it cannot start they are deleted here."""
+    """Call ``target`` (``"module:function"``, a background compile) with ``args``
+    (strings) in a detached Python process at the lowest priority (own session,
+    ``nice``, its autogroup at nice 19), which outlives this one and starts only once
+    this one has exited (at most ``AFTER_PARENT_MAX_S`` later).  It deletes the files
+    ``cleanup`` (the compile's marker, written by the caller with :func:`_claim`, and
+    its inputs) when done, whatever happens; if it cannot start they are deleted here.
+
+    Machine-wide cap (:mod:`~ironbark_opt.dynamics.compile_slots`): the child first
+    takes one of ``IRONBARK_MAX_BACKGROUND_COMPILES`` (default: the processors) slots,
+    before importing anything heavy, and holds it until it exits; when every slot is
+    held it gives up at once without calling ``target`` (this run keeps the VM, the
+    next run of the rocket starts another compile).  Nothing waits for a slot, least
+    of all this process.  ``IRONBARK_MAX_BACKGROUND_COMPILES=0``: no child at all;
+    a value that is not an integer >= 0 raises
+    :class:`~ironbark_opt.errors.InputError` (the files ``cleanup`` deleted first).
+    """
     import sys
+
+    from ironbark_opt.dynamics.compile_slots import max_background_compiles
+    try:
+        n_slots = max_background_compiles()
+    except ValueError:
+        _unlink_all(cleanup)
+        raise
+    if n_slots == 0:
+        _unlink_all(cleanup)
+        return
     script = ("import sys, os, importlib\n"
               "n = int(sys.argv[2])\n"
               "files, args = sys.argv[3:3 + n], sys.argv[3 + n:]\n"
               "mod, name = sys.argv[1].split(':')\n"
               "try:\n"
-              "    getattr(importlib.import_module(mod), name)(*args)\n"
+              "    from ironbark_opt.dynamics.compile_slots import compile_slot\n"
+              "    with compile_slot() as free:\n"
+              "        if free:\n"
+              "            getattr(importlib.import_module(mod), name)(*args)\n"
               "finally:\n"
               "    for path in files:\n"
               "        try: os.unlink(path)\n"
@@ -458,8 +494,12 @@ def run_detached(target: str, args: list[str], cleanup: list[Path]) -> None:
         subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                          start_new_session=True, close_fds=True)
     except OSError:
-        for path in cleanup:
-            Path(path).unlink(missing_ok=True)
+        _unlink_all(cleanup)
+
+
+def _unlink_all(paths) -> None:
+    for path in paths:
+        Path(path).unlink(missing_ok=True)
 
 
 def compile_detached(func: ca.Function, key: str, extra: str | None = None) -> None:
@@ -469,8 +509,9 @@ def compile_detached(func: ca.Function, key: str, extra: str | None = None) -> N
 
     ``extra``: ``"module:function"``, called there with ``func`` to give the
     Function(s) generated into the same library (e.g. its Jacobian).  At most one
-    such compile per library runs; a missing compiler or a failure only means the
-    VM stays in use.
+    such compile per library runs, within the machine-wide cap of :func:`run_detached`
+    (no free slot: it gives up, and the next call starts another); a missing
+    compiler or a failure only means the VM stays in use.
     """
     if _compiler() is None:
         return

@@ -156,7 +156,9 @@ def compile_detached(model) -> None:
     model from its pickled constructor arguments (the built Functions come from this
     cache) and generates and compiles there: the process that asks pays ~1 ms (the
     pickle), not the C code generation (~0.1 s) nor the compiler.  At most one such
-    compile per model library key runs at a time; without a compiler, nothing."""
+    compile per model library key runs at a time, within the machine-wide cap on
+    background compiles (no free slot: it gives up, the next run starts another;
+    :func:`~ironbark_opt.dynamics.integrator.run_detached`); without a compiler, nothing."""
     from ironbark_opt.dynamics.integrator import _claim, compiler_available, default_cache_dir, run_detached
     key = model._library_key()
     if key is None or not compiler_available():

@@ -13,6 +13,8 @@ def test_detached_compile_with_jacobian(tmp_path, monkeypatch):
     if not compiler_available():
         pytest.skip("no C compiler")
     monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    # slots of its own (test_compile_slots.py): other compiles on this machine cannot make it give up
+    monkeypatch.setenv("XDG_RUNTIME_DIR", str(tmp_path))
     # the child waits for this process to exit, at most AFTER_PARENT_MAX_S: here, not at all
     monkeypatch.setattr("ironbark_opt.dynamics.integrator.AFTER_PARENT_MAX_S", 0.0)
     x, p = ca.MX.sym("x", 2), ca.MX.sym("p", 3)
