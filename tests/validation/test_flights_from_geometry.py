@@ -36,7 +36,7 @@ def _apogee(path, table=None, guides=True):
     from unittest import mock
 
     from ironbark_opt import load_setup, simulate
-    off = mock.patch("ironbark_opt.aero.model.guide_drag", lambda rk: ((), ()))
+    off = mock.patch("ironbark_opt.aero.model.guide_drag", lambda *args, **kwargs: ((), ()))
     with contextlib.nullcontext() if guides else off:
         setup = load_setup(path, table=table) if table is not None else load_setup(path)
         return simulate(setup).summary_values["apogee_agl_m"]
