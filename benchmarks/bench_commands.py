@@ -46,6 +46,12 @@ earlier runs were waited for at most 300 s, then ran beside later runs (a busy m
 starves them at the lowest priority: ~20 starved compilers of other test runs were
 seen at once).
 
+Session 13, one go (``--runs 5 --first-rounds 5 --baseline <7804b72> --aero``, load ~1-2):
+simulate / floor 2.33x, cold ballast / simulate 0.94x, rank10 1.52x, mc1000 1.88x wall;
+first simulate vs the baseline's VM path 0.78x; compiled trajectory 1.8x the operation
+limit, 534x RocketPy, warm ballast 158x the root-finder; Kestrel aero build 66.7 / 24.7 s =
+2.70x (goal 3: not met; 3.83x an hour earlier under load 8-22).
+
 Optional ``--baseline CHECKOUT`` (e.g. ``git worktree add /tmp/base 9829aad``):
 the first ``simulate`` of a new rocket (empty caches) here against the baseline's
 VM path, in turn; with ``--aero`` also ``aero build`` of the Kestrel example at
