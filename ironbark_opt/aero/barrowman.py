@@ -237,7 +237,7 @@ def body_lift(alpha, planform_area: float, planform_centroid_x: float,
     aref = _positive(reference_area, "reference_area", "m^2")
     x_cp = _number(planform_centroid_x, "planform_centroid_x")
     if k is not None:
-        s = m.sin(alpha)
+        s = m.sin_angle(alpha)
         return _non_negative(k, "k", "") * a_plan / aref * s * s, x_cp
     if fineness_ratio is None:
         raise InputError("the viscous cross-flow needs the body's fineness ratio (or a constant k)",

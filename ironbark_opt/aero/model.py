@@ -31,7 +31,7 @@ import casadi as ca
 import numpy as np
 
 from ironbark_opt import _math as m
-from ironbark_opt.aero import barrowman, crossflow, damping
+from ironbark_opt.aero import barrowman, damping
 from ironbark_opt.aero.base_drag import BaseDrag
 from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
 from ironbark_opt.errors import InputError
@@ -228,11 +228,9 @@ class AeroModel:
         x_cp = s1 / s0
         s = m.sin_angle(alpha)
         cn_lin = s0 * s
-        if self.body_lift_k is not None:
-            cn_body = self.body_lift_k * self.lift.planform_area / self.reference_area * s * s
-        else:
-            cn_body = crossflow.normal_force(alpha, mach, self.lift.planform_area, self.reference_area,
-                                             self.lift.fineness_ratio)
+        cn_body, _ = barrowman.body_lift(alpha, self.lift.planform_area, self.lift.planform_centroid_x,
+                                         self.reference_area, mach=mach,
+                                         fineness_ratio=self.lift.fineness_ratio, k=self.body_lift_k)
         cn = cn_lin + cn_body
         d = self.reference_length
         cm = -(cn_lin * (x_cp - self.moment_reference_x)

@@ -406,13 +406,13 @@ def _compile_detached(cc: str, src: Path, lib: Path) -> None:
     after this process exits, within the machine-wide cap on background compiles), at
     most one per library: its source is copied to the marker ``.<lib stem>.c``, and a
     marker younger than ``_PENDING_S`` means a compile is already under way."""
-    import time
     pending = lib.with_name(f".{lib.stem}.c")
+    if not _claim(pending):
+        return
     try:
-        if pending.exists() and time.time() - pending.stat().st_mtime < _PENDING_S:
-            return
         shutil.copyfile(src, pending)
     except OSError:
+        pending.unlink(missing_ok=True)
         return
     run_detached("ironbark_opt.dynamics.integrator:_compile_source", [cc, str(pending), str(lib)], [pending])
 
