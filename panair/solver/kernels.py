@@ -86,6 +86,7 @@ except ImportError:                      # pragma: no cover
 
 _FOUR_PI = 4.0 * math.pi
 _TWO_PI = 2.0 * math.pi
+_SQRT2 = math.sqrt(2.0)
 
 
 def use_compiled(backend: str) -> bool:
@@ -102,17 +103,32 @@ def use_compiled(backend: str) -> bool:
 # error_model="numpy": a float division by zero gives inf/nan as in the NumPy reference
 # (which masks such entries afterwards) instead of raising ZeroDivisionError (Numba's
 # default "python" model; it stopped a real rocket's supersonic build)
-@njit(cache=True, nogil=True, error_model="numpy")
-def _tri_angle(Rx, Ry, Rz, r, i, j, k, dij, dik, djk):
-    """2 x signed solid angle term of triangle (i, j, k): Van Oosterom & Strackee eq. (8)."""
-    num = (Rx[i] * (Ry[j] * Rz[k] - Rz[j] * Ry[k])
-           + Ry[i] * (Rz[j] * Rx[k] - Rx[j] * Rz[k])
-           + Rz[i] * (Rx[j] * Ry[k] - Ry[j] * Rx[k]))
-    rrr = r[i] * r[j] * r[k]
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _tri_angle(xi, yi, zi, ri, xj, yj, zj, rj, xk, yk, zk, rk, dij, dik, djk):
+    """2 x signed solid angle term of triangle (i, j, k) (corners relative to the field
+    point, their distances and dot products): Van Oosterom & Strackee eq. (8)."""
+    num = (xi * (yj * zk - zj * yk)
+           + yi * (zj * xk - xj * zk)
+           + zi * (xj * yk - yj * xk))
+    rrr = ri * rj * rk
     if abs(num) <= 1e-13 * (rrr + 1e-300):
         return 0.0
-    den = rrr + dij * r[k] + dik * r[j] + djk * r[i]
+    den = rrr + dij * rk + dik * rj + djk * ri
     return 2.0 * math.atan2(num, den)
+
+
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _edge_log(ok, x, y, z, nx, ny, nz, r0, r1, length):
+    """Newman's edge term d ln((r0 + r1 + l) / (r0 + r1 - l)) of one edge (0 where
+    unused or where the field point is on its line)."""
+    d = -(x * nx + y * ny + z * nz)
+    if ok and abs(d) > 1e-14:
+        rs = r0 + r1
+        lo = rs - length
+        if lo < 1e-300:
+            lo = 1e-300
+        return d * math.log((rs + length) / lo)
+    return 0.0
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -122,42 +138,42 @@ def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, 
     ``qx, qy, qz``, ``nux, nuy, nuz``, ``L``, ``ok_edge``: (4, n) corners, in-plane
     edge normals, edge lengths and usable edges, as prepared by
     :func:`panair.solver.influence.influence_matrices`.  With ``add`` the values
-    are added to ``D`` and ``S``."""
+    are added to ``D`` and ``S``.  The four corners are scalars (no scratch arrays)
+    and the helpers inlined; the operations and their order are the NumPy
+    reference's."""
     m = points.shape[0]
     n = qx.shape[1]
-    Rx = np.empty(4)
-    Ry = np.empty(4)
-    Rz = np.empty(4)
-    r = np.empty(4)
     for i in range(m):
         px, py, pz = points[i, 0], points[i, 1], points[i, 2]
         for j in range(n):
-            for k in range(4):
-                Rx[k] = qx[k, j] - px
-                Ry[k] = qy[k, j] - py
-                Rz[k] = qz[k, j] - pz
-                r[k] = math.sqrt(Rx[k] ** 2 + Ry[k] ** 2 + Rz[k] ** 2)
-            d02 = Rx[0] * Rx[2] + Ry[0] * Ry[2] + Rz[0] * Rz[2]
-            d03 = Rx[0] * Rx[3] + Ry[0] * Ry[3] + Rz[0] * Rz[3]
-            d32 = Rx[3] * Rx[2] + Ry[3] * Ry[2] + Rz[3] * Rz[2]
-            d01 = Rx[0] * Rx[1] + Ry[0] * Ry[1] + Rz[0] * Rz[1]
-            d21 = Rx[2] * Rx[1] + Ry[2] * Ry[1] + Rz[2] * Rz[1]
+            x0, y0, z0 = qx[0, j] - px, qy[0, j] - py, qz[0, j] - pz
+            x1, y1, z1 = qx[1, j] - px, qy[1, j] - py, qz[1, j] - pz
+            x2, y2, z2 = qx[2, j] - px, qy[2, j] - py, qz[2, j] - pz
+            x3, y3, z3 = qx[3, j] - px, qy[3, j] - py, qz[3, j] - pz
+            r0 = math.sqrt(x0 ** 2 + y0 ** 2 + z0 ** 2)
+            r1 = math.sqrt(x1 ** 2 + y1 ** 2 + z1 ** 2)
+            r2 = math.sqrt(x2 ** 2 + y2 ** 2 + z2 ** 2)
+            r3 = math.sqrt(x3 ** 2 + y3 ** 2 + z3 ** 2)
+            d02 = x0 * x2 + y0 * y2 + z0 * z2
+            d03 = x0 * x3 + y0 * y3 + z0 * z3
+            d32 = x3 * x2 + y3 * y2 + z3 * z2
+            d01 = x0 * x1 + y0 * y1 + z0 * z1
+            d21 = x2 * x1 + y2 * y1 + z2 * z1
             # triangles (Q1, Q4, Q3) and (Q1, Q3, Q2)
             om = 0.0
-            om += _tri_angle(Rx, Ry, Rz, r, 0, 3, 2, d03, d02, d32)
-            om += _tri_angle(Rx, Ry, Rz, r, 0, 2, 1, d02, d01, d21)
+            om += _tri_angle(x0, y0, z0, r0, x3, y3, z3, r3, x2, y2, z2, r2, d03, d02, d32)
+            om += _tri_angle(x0, y0, z0, r0, x2, y2, z2, r2, x1, y1, z1, r1, d02, d01, d21)
             dmat = -om / _FOUR_PI
             integral = 0.0
-            for k in range(4):
-                k1 = (k + 1) % 4
-                d = -(Rx[k] * nux[k, j] + Ry[k] * nuy[k, j] + Rz[k] * nuz[k, j])
-                if ok_edge[k, j] and abs(d) > 1e-14:
-                    rs = r[k] + r[k1]
-                    lo = rs - L[k, j]
-                    if lo < 1e-300:
-                        lo = 1e-300
-                    integral += d * math.log((rs + L[k, j]) / lo)
-            z = -(Rx[0] * normal[j, 0] + Ry[0] * normal[j, 1] + Rz[0] * normal[j, 2])
+            integral += _edge_log(ok_edge[0, j], x0, y0, z0, nux[0, j], nuy[0, j], nuz[0, j],
+                                  r0, r1, L[0, j])
+            integral += _edge_log(ok_edge[1, j], x1, y1, z1, nux[1, j], nuy[1, j], nuz[1, j],
+                                  r1, r2, L[1, j])
+            integral += _edge_log(ok_edge[2, j], x2, y2, z2, nux[2, j], nuy[2, j], nuz[2, j],
+                                  r2, r3, L[2, j])
+            integral += _edge_log(ok_edge[3, j], x3, y3, z3, nux[3, j], nuy[3, j], nuz[3, j],
+                                  r3, r0, L[3, j])
+            z = -(x0 * normal[j, 0] + y0 * normal[j, 1] + z0 * normal[j, 2])
             integral -= abs(z) * abs(om)
             if add:
                 S[i, j] -= integral / _FOUR_PI
@@ -169,17 +185,18 @@ def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, 
 
 # ---------------------------------------------------------------- supersonic source
 
-@njit(cache=True, nogil=True, error_model="numpy")
-def _edge_term(ta, tb, s_a, s_b, a, b, H2, delta):
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _edge_term(ta, tb, s_a, s_b, a, q, b, h, delta):
     """delta * Integral_ta^tb sqrt(R) / (R + H2) dtau, R = a tau^2 + b tau + c, over
     one sub-interval with sqrt(R) = s_a, s_b at its ends: the scalar form of
     :func:`panair.solver.supersonic_influence._edge_term` (derivation, sources and
-    the continuity at a sonic edge, a = 0, and at delta = 0 there)."""
+    the continuity at a sonic edge, a = 0, and at delta = 0 there).  ``q`` =
+    sqrt(|a|) (per panel edge) and ``h`` = sqrt(H2) (per point-panel pair) are the
+    caller's: the same values, not computed again for every sub-interval."""
     if delta == 0.0:
         return 0.0
     dt = tb - ta
     S = s_a + s_b
-    q = math.sqrt(abs(a))
     x = q * dt / S if S > 0 else math.inf
     ga = a * ta + 0.5 * b
     gb = a * tb + 0.5 * b
@@ -194,16 +211,16 @@ def _edge_term(ta, tb, s_a, s_b, a, b, H2, delta):
                   * math.log((q * s_b + abs(gb) + 1e-300) / (q * s_a + abs(ga) + 1e-300)) / q)
     else:
         j0 = 2.0 * math.atan2(q * dt, S) / q
-    h = math.sqrt(H2)
     ad = abs(delta)
     ek = math.copysign(h, delta) * (math.atan2(ad * s_b, h * gb) - math.atan2(ad * s_a, h * ga))
     return delta * j0 - ek
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all, eq_all,
-          nup_all, nuq_all, a_all):
-    """Scalar form of :func:`panair.solver.supersonic_influence._pair_potential`."""
+          nup_all, nuq_all, a_all, qa_all):
+    """Scalar form of :func:`panair.solver.supersonic_influence._pair_potential`
+    (``qa_all`` = sqrt(|a_all|))."""
     dx, dy, dz = px - q0[j, 0], py - q0[j, 1], pz - q0[j, 2]
     # summed in the order of NumPy's einsum ("kj,kj->k": (x + z) + y), the reference's:
     # the potential is sensitive to rounding near the Mach cone (sqrt of a vanishing R)
@@ -214,6 +231,7 @@ def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_
     sgj = sg[j]
     U = sgj * (d1 + 2.0 * e1x_nx[j] * h / gj)
     H2 = h * h / gj
+    hs = math.sqrt(H2)
     integral = 0.0
     for k in range(4):
         pk = U - uk[j, k]
@@ -237,29 +255,60 @@ def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_
         hi_raw = max(r1, r2)
         lo = min(max(lo_raw, 0.0), Lb)
         hi = min(max(hi_raw, 0.0), Lb)
-        # sqrt(R) at the sub-interval ends: exactly 0 at a root inside the edge
+        # sqrt(R) at the sub-interval ends: exactly 0 at a root inside the edge; lo (hi)
+        # is otherwise clipped to 0 or Lb (no real root: lo = hi = 0), where R is the
+        # same expression as at the edge's ends, so sqrt(R) there is s0 or sL, bit for
+        # bit (R(0) = a*0 + b*0 + c = c exactly: c is never -0)
         s0 = math.sqrt(max(c, 0.0))
         sL = math.sqrt(max(a * (Lb * Lb) + b * Lb + c, 0.0))
-        s_lo = 0.0 if has and 0.0 < lo_raw < Lb else \
-            math.sqrt(max(a * (lo * lo) + b * lo + c, 0.0))
-        s_hi = 0.0 if has and 0.0 < hi_raw < Lb else \
-            math.sqrt(max(a * (hi * hi) + b * hi + c, 0.0))
+        if has and 0.0 < lo_raw < Lb:
+            s_lo = 0.0
+        elif lo == 0.0:
+            s_lo = s0
+        else:
+            s_lo = sL
+        if has and 0.0 < hi_raw < Lb:
+            s_hi = 0.0
+        elif hi == 0.0:
+            s_hi = s0
+        else:
+            s_hi = sL
         # sub-intervals [0, lo], [lo, hi], [hi, Lb]; the part inside the upstream
-        # Mach cone is one of them (the cone is convex); as NumPy: the last valid one
+        # Mach cone is one of them (the cone is convex); as NumPy: the last valid one,
+        # so they are tried from the last and only that one is integrated
         total = 0.0
-        for s in range(3):
+        for s in range(2, -1, -1):
             ta = 0.0 if s == 0 else (lo if s == 1 else hi)
             tb = lo if s == 0 else (hi if s == 1 else Lb)
-            sa_ = s0 if s == 0 else (s_lo if s == 1 else s_hi)
-            sb_ = s_lo if s == 0 else (s_hi if s == 1 else sL)
             mid = 0.5 * (ta + tb)
             if (tb - ta > 1e-15 * (1 + Lb)) and (a * (mid * mid) + b * mid + c > 0) \
                     and (pk + ep * mid > 0):
-                total = _edge_term(ta, tb, sa_, sb_, a, b, H2, delta)
+                sa_ = s0 if s == 0 else (s_lo if s == 1 else s_hi)
+                sb_ = s_lo if s == 0 else (s_hi if s == 1 else sL)
+                total = _edge_term(ta, tb, sa_, sb_, a, qa_all[j, k], b, hs, delta)
+                break
         if okL[j, k]:
             integral += total
     integral = integral / sgj
     return -integral / _TWO_PI
+
+
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _in_cone(ex, ey, ez, thr):
+    """The bounding-sphere test of a source panel: ``(hypot(ey, ez) - ex) / sqrt(2) <
+    thr``, ``thr`` = its radius (1 + 1e-9) + 1e-12 (outside: the sphere is outside the
+    upstream Mach cone, 45 deg in scaled coordinates, no influence).  Decided with
+    sqrt(ey^2 + ez^2) (a few ulps from hypot, a quarter of its cost) unless the two
+    sides are within 1e-13 relative of each other, where libm's hypot decides: the
+    same outcome as hypot's test for every pair."""
+    t = math.sqrt(ey * ey + ez * ez)
+    d = (t - ex) / _SQRT2
+    tol = 1e-13 * (t + abs(ex)) + 1e-150
+    if d < thr - tol:
+        return True
+    if d > thr + tol:
+        return False
+    return (math.hypot(ey, ez) - ex) / _SQRT2 < thr
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -270,15 +319,15 @@ def supersonic_source(points, cen, rho, q0, normal, e1, e2, g1, sg, e1x_nx, uk, 
     :func:`panair.solver.supersonic_influence.source_potential`."""
     m = points.shape[0]
     n = cen.shape[0]
-    sqrt2 = math.sqrt(2.0)
+    qa_all = np.sqrt(np.abs(a_all))
+    thr = rho * (1 + 1e-9) + 1e-12
     for i in range(m):
         px, py, pz = points[i, 0], points[i, 1], points[i, 2]
         for j in range(n):
             # bounding sphere outside the upstream Mach cone (45 deg scaled): no influence
-            dist = (math.hypot(py - cen[j, 1], pz - cen[j, 2]) - (px - cen[j, 0])) / sqrt2
-            if dist < rho[j] * (1 + 1e-9) + 1e-12:
+            if _in_cone(px - cen[j, 0], py - cen[j, 1], pz - cen[j, 2], thr[j]):
                 out[i, j] = _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L,
-                                  okL, ep_all, eq_all, nup_all, nuq_all, a_all)
+                                  okL, ep_all, eq_all, nup_all, nuq_all, a_all, qa_all)
             else:
                 out[i, j] = 0.0
 
@@ -301,10 +350,11 @@ def supersonic_source_pair(p0, p1, mirror, rows, recv, recv_m, src_fin, src_side
     stops the pass and is returned (its system has no solution: the caller raises),
     else -1."""
     n = cen.shape[0]
+    qa_all = np.sqrt(np.abs(a_all))
+    thr = rho * (1 + 1e-9) + 1e-12
     pts = np.empty((4, 3))
     val = np.empty(4)
     npts = 4 if mirror else 2
-    sqrt2 = math.sqrt(2.0)
     for i in rows:
         for k in range(3):
             pts[0, k] = p0[i, k]
@@ -324,10 +374,9 @@ def supersonic_source_pair(p0, p1, mirror, rows, recv, recv_m, src_fin, src_side
                     continue
                 px, py, pz = pts[k, 0], pts[k, 1], pts[k, 2]
                 # bounding sphere outside the upstream Mach cone (45 deg scaled): no influence
-                dist = (math.hypot(py - cen[j, 1], pz - cen[j, 2]) - (px - cen[j, 0])) / sqrt2
-                if dist < rho[j] * (1 + 1e-9) + 1e-12:
+                if _in_cone(px - cen[j, 0], py - cen[j, 1], pz - cen[j, 2], thr[j]):
                     val[k] = _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L,
-                                   okL, ep_all, eq_all, nup_all, nuq_all, a_all)
+                                   okL, ep_all, eq_all, nup_all, nuq_all, a_all, qa_all)
             v0 = val[0]
             v1 = val[1]
             if mirror:
