@@ -20,6 +20,11 @@ Measured (Kestrel, 2352 / 3072 panels, CPU s per Mach number, loaded 2-core
 machine): subsonic setup 5.4 -> ~2.5 s (LU 0.5 s), supersonic 50.8 -> 11-14 s
 (LU 0.7-1.1 s); the one-off compile of both kernels 4-11 s CPU (first build
 with an empty cache 69.9 / 69.2 s CPU against 65.7 / 58.1 s with it, two runs).
+Later (session 14), the supersonic pair kernel with its helpers inlined and without the
+sqrt and libm calls a value already known makes redundant (see :func:`_pair`,
+:func:`_in_cone`): 0.57-0.69x its time on the Kestrel's Mach 1.2-2 matrices, bitwise the
+same coefficients.  The Laplace kernel is bound by its 2 atan2 + 4 log per pair (the
+same loop with those calls replaced by arithmetic: ~0.35x its time).
 
 Why Numba (and not CasADi code generation or a C kernel built with the
 system compiler):
@@ -103,32 +108,17 @@ def use_compiled(backend: str) -> bool:
 # error_model="numpy": a float division by zero gives inf/nan as in the NumPy reference
 # (which masks such entries afterwards) instead of raising ZeroDivisionError (Numba's
 # default "python" model; it stopped a real rocket's supersonic build)
-@njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _tri_angle(xi, yi, zi, ri, xj, yj, zj, rj, xk, yk, zk, rk, dij, dik, djk):
-    """2 x signed solid angle term of triangle (i, j, k) (corners relative to the field
-    point, their distances and dot products): Van Oosterom & Strackee eq. (8)."""
-    num = (xi * (yj * zk - zj * yk)
-           + yi * (zj * xk - xj * zk)
-           + zi * (xj * yk - yj * xk))
-    rrr = ri * rj * rk
+@njit(cache=True, nogil=True, error_model="numpy")
+def _tri_angle(Rx, Ry, Rz, r, i, j, k, dij, dik, djk):
+    """2 x signed solid angle term of triangle (i, j, k): Van Oosterom & Strackee eq. (8)."""
+    num = (Rx[i] * (Ry[j] * Rz[k] - Rz[j] * Ry[k])
+           + Ry[i] * (Rz[j] * Rx[k] - Rx[j] * Rz[k])
+           + Rz[i] * (Rx[j] * Ry[k] - Ry[j] * Rx[k]))
+    rrr = r[i] * r[j] * r[k]
     if abs(num) <= 1e-13 * (rrr + 1e-300):
         return 0.0
-    den = rrr + dij * rk + dik * rj + djk * ri
+    den = rrr + dij * r[k] + dik * r[j] + djk * r[i]
     return 2.0 * math.atan2(num, den)
-
-
-@njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _edge_log(ok, x, y, z, nx, ny, nz, r0, r1, length):
-    """Newman's edge term d ln((r0 + r1 + l) / (r0 + r1 - l)) of one edge (0 where
-    unused or where the field point is on its line)."""
-    d = -(x * nx + y * ny + z * nz)
-    if ok and abs(d) > 1e-14:
-        rs = r0 + r1
-        lo = rs - length
-        if lo < 1e-300:
-            lo = 1e-300
-        return d * math.log((rs + length) / lo)
-    return 0.0
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -138,42 +128,42 @@ def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, 
     ``qx, qy, qz``, ``nux, nuy, nuz``, ``L``, ``ok_edge``: (4, n) corners, in-plane
     edge normals, edge lengths and usable edges, as prepared by
     :func:`panair.solver.influence.influence_matrices`.  With ``add`` the values
-    are added to ``D`` and ``S``.  The four corners are scalars (no scratch arrays)
-    and the helpers inlined; the operations and their order are the NumPy
-    reference's."""
+    are added to ``D`` and ``S``."""
     m = points.shape[0]
     n = qx.shape[1]
+    Rx = np.empty(4)
+    Ry = np.empty(4)
+    Rz = np.empty(4)
+    r = np.empty(4)
     for i in range(m):
         px, py, pz = points[i, 0], points[i, 1], points[i, 2]
         for j in range(n):
-            x0, y0, z0 = qx[0, j] - px, qy[0, j] - py, qz[0, j] - pz
-            x1, y1, z1 = qx[1, j] - px, qy[1, j] - py, qz[1, j] - pz
-            x2, y2, z2 = qx[2, j] - px, qy[2, j] - py, qz[2, j] - pz
-            x3, y3, z3 = qx[3, j] - px, qy[3, j] - py, qz[3, j] - pz
-            r0 = math.sqrt(x0 ** 2 + y0 ** 2 + z0 ** 2)
-            r1 = math.sqrt(x1 ** 2 + y1 ** 2 + z1 ** 2)
-            r2 = math.sqrt(x2 ** 2 + y2 ** 2 + z2 ** 2)
-            r3 = math.sqrt(x3 ** 2 + y3 ** 2 + z3 ** 2)
-            d02 = x0 * x2 + y0 * y2 + z0 * z2
-            d03 = x0 * x3 + y0 * y3 + z0 * z3
-            d32 = x3 * x2 + y3 * y2 + z3 * z2
-            d01 = x0 * x1 + y0 * y1 + z0 * z1
-            d21 = x2 * x1 + y2 * y1 + z2 * z1
+            for k in range(4):
+                Rx[k] = qx[k, j] - px
+                Ry[k] = qy[k, j] - py
+                Rz[k] = qz[k, j] - pz
+                r[k] = math.sqrt(Rx[k] ** 2 + Ry[k] ** 2 + Rz[k] ** 2)
+            d02 = Rx[0] * Rx[2] + Ry[0] * Ry[2] + Rz[0] * Rz[2]
+            d03 = Rx[0] * Rx[3] + Ry[0] * Ry[3] + Rz[0] * Rz[3]
+            d32 = Rx[3] * Rx[2] + Ry[3] * Ry[2] + Rz[3] * Rz[2]
+            d01 = Rx[0] * Rx[1] + Ry[0] * Ry[1] + Rz[0] * Rz[1]
+            d21 = Rx[2] * Rx[1] + Ry[2] * Ry[1] + Rz[2] * Rz[1]
             # triangles (Q1, Q4, Q3) and (Q1, Q3, Q2)
             om = 0.0
-            om += _tri_angle(x0, y0, z0, r0, x3, y3, z3, r3, x2, y2, z2, r2, d03, d02, d32)
-            om += _tri_angle(x0, y0, z0, r0, x2, y2, z2, r2, x1, y1, z1, r1, d02, d01, d21)
+            om += _tri_angle(Rx, Ry, Rz, r, 0, 3, 2, d03, d02, d32)
+            om += _tri_angle(Rx, Ry, Rz, r, 0, 2, 1, d02, d01, d21)
             dmat = -om / _FOUR_PI
             integral = 0.0
-            integral += _edge_log(ok_edge[0, j], x0, y0, z0, nux[0, j], nuy[0, j], nuz[0, j],
-                                  r0, r1, L[0, j])
-            integral += _edge_log(ok_edge[1, j], x1, y1, z1, nux[1, j], nuy[1, j], nuz[1, j],
-                                  r1, r2, L[1, j])
-            integral += _edge_log(ok_edge[2, j], x2, y2, z2, nux[2, j], nuy[2, j], nuz[2, j],
-                                  r2, r3, L[2, j])
-            integral += _edge_log(ok_edge[3, j], x3, y3, z3, nux[3, j], nuy[3, j], nuz[3, j],
-                                  r3, r0, L[3, j])
-            z = -(x0 * normal[j, 0] + y0 * normal[j, 1] + z0 * normal[j, 2])
+            for k in range(4):
+                k1 = (k + 1) % 4
+                d = -(Rx[k] * nux[k, j] + Ry[k] * nuy[k, j] + Rz[k] * nuz[k, j])
+                if ok_edge[k, j] and abs(d) > 1e-14:
+                    rs = r[k] + r[k1]
+                    lo = rs - L[k, j]
+                    if lo < 1e-300:
+                        lo = 1e-300
+                    integral += d * math.log((rs + L[k, j]) / lo)
+            z = -(Rx[0] * normal[j, 0] + Ry[0] * normal[j, 1] + Rz[0] * normal[j, 2])
             integral -= abs(z) * abs(om)
             if add:
                 S[i, j] -= integral / _FOUR_PI
