@@ -51,6 +51,12 @@ simulate / floor 2.33x, cold ballast / simulate 0.94x, rank10 1.52x, mc1000 1.88
 first simulate vs the baseline's VM path 0.78x; compiled trajectory 1.8x the operation
 limit, 534x RocketPy, warm ballast 158x the root-finder; Kestrel aero build 66.7 / 24.7 s =
 2.70x (goal 3: not met; 3.83x an hour earlier under load 8-22).
+Session 14 (supersonic kernel without redundant work, thin SVD, in-place difference):
+Kestrel aero build against the same command at b1525a5, paired whole-process runs (5
+each, load ~3): 0.78x wall (15.1 / 17.3 s median), 0.80x CPU, tables identical; with
+7804b72 in the same go (its Kestrel file, load 3-4, one core effectively free: wall ~
+CPU) 7804b72 / here 3.22x, 4.00x, 2.97x in three rounds, 7804b72 / b1525a5 3.03x, 3.36x,
+2.51x.
 
 Optional ``--baseline CHECKOUT`` (e.g. ``git worktree add /tmp/base 9829aad``):
 the first ``simulate`` of a new rocket (empty caches) here against the baseline's

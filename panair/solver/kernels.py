@@ -20,6 +20,11 @@ Measured (Kestrel, 2352 / 3072 panels, CPU s per Mach number, loaded 2-core
 machine): subsonic setup 5.4 -> ~2.5 s (LU 0.5 s), supersonic 50.8 -> 11-14 s
 (LU 0.7-1.1 s); the one-off compile of both kernels 4-11 s CPU (first build
 with an empty cache 69.9 / 69.2 s CPU against 65.7 / 58.1 s with it, two runs).
+Later (session 14), the supersonic pair kernel with its helpers inlined and without the
+sqrt and libm calls a value already known makes redundant (see :func:`_pair`,
+:func:`_in_cone`): 0.57-0.69x its time on the Kestrel's Mach 1.2-2 matrices, bitwise the
+same coefficients.  The Laplace kernel is bound by its 2 atan2 + 4 log per pair (the
+same loop with those calls replaced by arithmetic: ~0.35x its time).
 
 Why Numba (and not CasADi code generation or a C kernel built with the
 system compiler):
@@ -86,6 +91,7 @@ except ImportError:                      # pragma: no cover
 
 _FOUR_PI = 4.0 * math.pi
 _TWO_PI = 2.0 * math.pi
+_SQRT2 = math.sqrt(2.0)
 
 
 def use_compiled(backend: str) -> bool:
@@ -169,17 +175,18 @@ def laplace_influence(points, qx, qy, qz, nux, nuy, nuz, normal, L, ok_edge, D, 
 
 # ---------------------------------------------------------------- supersonic source
 
-@njit(cache=True, nogil=True, error_model="numpy")
-def _edge_term(ta, tb, s_a, s_b, a, b, H2, delta):
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _edge_term(ta, tb, s_a, s_b, a, q, b, h, delta):
     """delta * Integral_ta^tb sqrt(R) / (R + H2) dtau, R = a tau^2 + b tau + c, over
     one sub-interval with sqrt(R) = s_a, s_b at its ends: the scalar form of
     :func:`panair.solver.supersonic_influence._edge_term` (derivation, sources and
-    the continuity at a sonic edge, a = 0, and at delta = 0 there)."""
+    the continuity at a sonic edge, a = 0, and at delta = 0 there).  ``q`` =
+    sqrt(|a|) (per panel edge) and ``h`` = sqrt(H2) (per point-panel pair) are the
+    caller's: the same values, not computed again for every sub-interval."""
     if delta == 0.0:
         return 0.0
     dt = tb - ta
     S = s_a + s_b
-    q = math.sqrt(abs(a))
     x = q * dt / S if S > 0 else math.inf
     ga = a * ta + 0.5 * b
     gb = a * tb + 0.5 * b
@@ -194,16 +201,16 @@ def _edge_term(ta, tb, s_a, s_b, a, b, H2, delta):
                   * math.log((q * s_b + abs(gb) + 1e-300) / (q * s_a + abs(ga) + 1e-300)) / q)
     else:
         j0 = 2.0 * math.atan2(q * dt, S) / q
-    h = math.sqrt(H2)
     ad = abs(delta)
     ek = math.copysign(h, delta) * (math.atan2(ad * s_b, h * gb) - math.atan2(ad * s_a, h * ga))
     return delta * j0 - ek
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all, eq_all,
-          nup_all, nuq_all, a_all):
-    """Scalar form of :func:`panair.solver.supersonic_influence._pair_potential`."""
+          nup_all, nuq_all, a_all, qa_all):
+    """Scalar form of :func:`panair.solver.supersonic_influence._pair_potential`
+    (``qa_all`` = sqrt(|a_all|))."""
     dx, dy, dz = px - q0[j, 0], py - q0[j, 1], pz - q0[j, 2]
     # summed in the order of NumPy's einsum ("kj,kj->k": (x + z) + y), the reference's:
     # the potential is sensitive to rounding near the Mach cone (sqrt of a vanishing R)
@@ -214,6 +221,7 @@ def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_
     sgj = sg[j]
     U = sgj * (d1 + 2.0 * e1x_nx[j] * h / gj)
     H2 = h * h / gj
+    hs = math.sqrt(H2)
     integral = 0.0
     for k in range(4):
         pk = U - uk[j, k]
@@ -237,29 +245,60 @@ def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_
         hi_raw = max(r1, r2)
         lo = min(max(lo_raw, 0.0), Lb)
         hi = min(max(hi_raw, 0.0), Lb)
-        # sqrt(R) at the sub-interval ends: exactly 0 at a root inside the edge
+        # sqrt(R) at the sub-interval ends: exactly 0 at a root inside the edge; lo (hi)
+        # is otherwise clipped to 0 or Lb (no real root: lo = hi = 0), where R is the
+        # same expression as at the edge's ends, so sqrt(R) there is s0 or sL, bit for
+        # bit (R(0) = a*0 + b*0 + c = c exactly: c is never -0)
         s0 = math.sqrt(max(c, 0.0))
         sL = math.sqrt(max(a * (Lb * Lb) + b * Lb + c, 0.0))
-        s_lo = 0.0 if has and 0.0 < lo_raw < Lb else \
-            math.sqrt(max(a * (lo * lo) + b * lo + c, 0.0))
-        s_hi = 0.0 if has and 0.0 < hi_raw < Lb else \
-            math.sqrt(max(a * (hi * hi) + b * hi + c, 0.0))
+        if has and 0.0 < lo_raw < Lb:
+            s_lo = 0.0
+        elif lo == 0.0:
+            s_lo = s0
+        else:
+            s_lo = sL
+        if has and 0.0 < hi_raw < Lb:
+            s_hi = 0.0
+        elif hi == 0.0:
+            s_hi = s0
+        else:
+            s_hi = sL
         # sub-intervals [0, lo], [lo, hi], [hi, Lb]; the part inside the upstream
-        # Mach cone is one of them (the cone is convex); as NumPy: the last valid one
+        # Mach cone is one of them (the cone is convex); as NumPy: the last valid one,
+        # so they are tried from the last and only that one is integrated
         total = 0.0
-        for s in range(3):
+        for s in range(2, -1, -1):
             ta = 0.0 if s == 0 else (lo if s == 1 else hi)
             tb = lo if s == 0 else (hi if s == 1 else Lb)
-            sa_ = s0 if s == 0 else (s_lo if s == 1 else s_hi)
-            sb_ = s_lo if s == 0 else (s_hi if s == 1 else sL)
             mid = 0.5 * (ta + tb)
             if (tb - ta > 1e-15 * (1 + Lb)) and (a * (mid * mid) + b * mid + c > 0) \
                     and (pk + ep * mid > 0):
-                total = _edge_term(ta, tb, sa_, sb_, a, b, H2, delta)
+                sa_ = s0 if s == 0 else (s_lo if s == 1 else s_hi)
+                sb_ = s_lo if s == 0 else (s_hi if s == 1 else sL)
+                total = _edge_term(ta, tb, sa_, sb_, a, qa_all[j, k], b, hs, delta)
+                break
         if okL[j, k]:
             integral += total
     integral = integral / sgj
     return -integral / _TWO_PI
+
+
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _in_cone(ex, ey, ez, thr):
+    """The bounding-sphere test of a source panel: ``(hypot(ey, ez) - ex) / sqrt(2) <
+    thr``, ``thr`` = its radius (1 + 1e-9) + 1e-12 (outside: the sphere is outside the
+    upstream Mach cone, 45 deg in scaled coordinates, no influence).  Decided with
+    sqrt(ey^2 + ez^2) (a few ulps from hypot, a quarter of its cost) unless the two
+    sides are within 1e-13 relative of each other, where libm's hypot decides: the
+    same outcome as hypot's test for every pair."""
+    t = math.sqrt(ey * ey + ez * ez)
+    d = (t - ex) / _SQRT2
+    tol = 1e-13 * (t + abs(ex)) + 1e-150
+    if d < thr - tol:
+        return True
+    if d > thr + tol:
+        return False
+    return (math.hypot(ey, ez) - ex) / _SQRT2 < thr
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -270,15 +309,15 @@ def supersonic_source(points, cen, rho, q0, normal, e1, e2, g1, sg, e1x_nx, uk, 
     :func:`panair.solver.supersonic_influence.source_potential`."""
     m = points.shape[0]
     n = cen.shape[0]
-    sqrt2 = math.sqrt(2.0)
+    qa_all = np.sqrt(np.abs(a_all))
+    thr = rho * (1 + 1e-9) + 1e-12
     for i in range(m):
         px, py, pz = points[i, 0], points[i, 1], points[i, 2]
         for j in range(n):
             # bounding sphere outside the upstream Mach cone (45 deg scaled): no influence
-            dist = (math.hypot(py - cen[j, 1], pz - cen[j, 2]) - (px - cen[j, 0])) / sqrt2
-            if dist < rho[j] * (1 + 1e-9) + 1e-12:
+            if _in_cone(px - cen[j, 0], py - cen[j, 1], pz - cen[j, 2], thr[j]):
                 out[i, j] = _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L,
-                                  okL, ep_all, eq_all, nup_all, nuq_all, a_all)
+                                  okL, ep_all, eq_all, nup_all, nuq_all, a_all, qa_all)
             else:
                 out[i, j] = 0.0
 
@@ -301,10 +340,11 @@ def supersonic_source_pair(p0, p1, mirror, rows, recv, recv_m, src_fin, src_side
     stops the pass and is returned (its system has no solution: the caller raises),
     else -1."""
     n = cen.shape[0]
+    qa_all = np.sqrt(np.abs(a_all))
+    thr = rho * (1 + 1e-9) + 1e-12
     pts = np.empty((4, 3))
     val = np.empty(4)
     npts = 4 if mirror else 2
-    sqrt2 = math.sqrt(2.0)
     for i in rows:
         for k in range(3):
             pts[0, k] = p0[i, k]
@@ -324,10 +364,9 @@ def supersonic_source_pair(p0, p1, mirror, rows, recv, recv_m, src_fin, src_side
                     continue
                 px, py, pz = pts[k, 0], pts[k, 1], pts[k, 2]
                 # bounding sphere outside the upstream Mach cone (45 deg scaled): no influence
-                dist = (math.hypot(py - cen[j, 1], pz - cen[j, 2]) - (px - cen[j, 0])) / sqrt2
-                if dist < rho[j] * (1 + 1e-9) + 1e-12:
+                if _in_cone(px - cen[j, 0], py - cen[j, 1], pz - cen[j, 2], thr[j]):
                     val[k] = _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L,
-                                   okL, ep_all, eq_all, nup_all, nuq_all, a_all)
+                                   okL, ep_all, eq_all, nup_all, nuq_all, a_all, qa_all)
             v0 = val[0]
             v1 = val[1]
             if mirror:

@@ -613,7 +613,10 @@ class SupersonicSolver:
             # in the x-z plane
             if self._fold is not None:
                 phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
-            A = (phi1 - phi0) / eps[rows, None]
+            # (phi1 - phi0) / eps in phi1's memory (not used again): no two (n, n)
+            # temporaries to allocate and fault in; the same operations
+            A = np.subtract(phi1, phi0, out=phi1)
+            A /= eps[rows, None]
             del phi1
             pos = (lambda j: int(self._fold.rep_of[j])) if self._fold is not None else int
             wake_rows(A, phi0, m, sheets, pos, idx)
@@ -621,7 +624,10 @@ class SupersonicSolver:
             phi1 = None
         elif self._fold is None:
             # (potential, influence matrix, rows) of the system, or of the mirror fold's two
-            systems = [(phi0, (phi1 - phi0) / eps[rows, None], rows)]
+            A = np.subtract(phi1, phi0, out=phi1)       # in place, as above
+            A /= eps[rows, None]
+            systems = [(phi0, A, rows)]
+            del A
         else:
             fold = self._fold
             systems = [fold.fold_difference(phi0, phi1, rows, eps[rows]) + (rows,)]

@@ -76,9 +76,12 @@ class WakeSheets:
 
 def fin_plane(fin_centroids):
     """A fin's mid-plane: (point, unit normal) of the least-squares plane through its
-    panel centroids (the smallest singular direction)."""
+    panel centroids (the smallest singular direction).  ``full_matrices=False``: the same
+    right singular vectors (bitwise, checked on this LAPACK) without the (n, n) left
+    ones, which took ~45 ms a call for a fin's ~1000 panels (ten calls per supersonic
+    Mach number of the Kestrel)."""
     c0 = fin_centroids.mean(axis=0)
-    return c0, np.linalg.svd(fin_centroids - c0)[2][2]
+    return c0, np.linalg.svd(fin_centroids - c0, full_matrices=False)[2][2]
 
 
 def wake_sheets(panels, keep, fins) -> WakeSheets | None:
