@@ -254,7 +254,10 @@ class FinGeometry:
         # of their own Kutta-Joukowski force 2 Gamma w per strip (rounded within
         # 1-2 %), and meshing the face with 4 ... 16 panels did not converge (body + 4
         # fins, t/c 3.9 %, Mach 0.5: CN-alpha 12.45, 12.89, 12.81, 12.35 /rad; rounded
-        # 13.98, Diederich with slender-body interference 14.25)
+        # 13.98, Diederich with slender-body interference 14.25); the face's zero-lift
+        # axial force was CA 0.26 where d'Alembert's is 0 (rounded 0.008).  Its drag
+        # is the empirical edge drag's (empirical_drag.separated_pressure_ca by the
+        # section kind: Niskanen 2013 eq. 3.86-3.87 for square edges)
         nose = np.sqrt(np.clip(1 - (1 - np.minimum(xi, t / 2) / (t / 2)) ** 2, 0, 1))
         return 0.5 * t * np.minimum(nose, tail)
 
