@@ -17,7 +17,9 @@ pointing into the flow) and its network kinds:
   the section from the lower trailing edge over the leading edge to the
   upper trailing edge; ``capK`` (flat tip cap) and ``wakeK`` (trailing-edge
   wake).  Fin sections: ``double_wedge`` (diamond, or hexagonal with
-  bevels), ``square``/``rounded`` (real blunt leading edge; the blunt
+  bevels), ``square``/``rounded`` (a blunt leading edge rounded with radius
+  t/2 — a square one too, whose corners the panel method cannot integrate,
+  see :meth:`FinGeometry.half_thickness`; the blunt
   trailing edge is closed by a wedge over the last thickness of chord so
   the panel method has a Kutta edge; the wedge's panels carry no force and
   are left out of the supersonic solve — the separated base behind a blunt
@@ -240,10 +242,24 @@ class FinGeometry:
             return 5 * t * (0.2969 * np.sqrt(s) - 0.1260 * s - 0.3516 * s**2
                             + 0.2843 * s**3 - 0.1036 * s**4)
         tail = np.clip((c - xi) / min(t, c / 2), 0.0, 1.0)       # TE closure wedge
-        if self.section == "rounded":
-            nose = np.sqrt(np.clip(1 - (1 - np.minimum(xi, t / 2) / (t / 2)) ** 2, 0, 1))
-            return 0.5 * t * np.minimum(nose, tail)
-        return 0.5 * t * np.where(xi <= 0, 0.0, tail)
+        # square and rounded: a round nose of radius t/2.  A square leading edge is
+        # meshed as the rounded one (subsonic meshes; supersonic ones replace both by
+        # a wedge, :meth:`sharpened`).  The lift of attached potential flow is
+        # rho U Gamma whatever the leading edge's shape (Kutta-Joukowski theorem, e.g.
+        # Anderson, Fundamentals of Aerodynamics, 5th ed., sec. 3.16), Gamma being set
+        # by the Kutta condition at the trailing edge (the same closure here); but the
+        # panel method cannot integrate the pressure at the square edge's two corners
+        # (the flow round a 90-degree corner is singular as r^(-1/3)): with the same
+        # Gamma, the square fins' pressure-integrated normal force fell 16-18 % short
+        # of their own Kutta-Joukowski force 2 Gamma w per strip (rounded within
+        # 1-2 %), and meshing the face with 4 ... 16 panels did not converge (body + 4
+        # fins, t/c 3.9 %, Mach 0.5: CN-alpha 12.45, 12.89, 12.81, 12.35 /rad; rounded
+        # 13.98, Diederich with slender-body interference 14.25); the face's zero-lift
+        # axial force was CA 0.26 where d'Alembert's is 0 (rounded 0.008).  Its drag
+        # is the empirical edge drag's (empirical_drag.separated_pressure_ca by the
+        # section kind: Niskanen 2013 eq. 3.86-3.87 for square edges)
+        nose = np.sqrt(np.clip(1 - (1 - np.minimum(xi, t / 2) / (t / 2)) ** 2, 0, 1))
+        return 0.5 * t * np.minimum(nose, tail)
 
 
 @dataclass(frozen=True)

@@ -61,7 +61,9 @@ def test_fin_in_symmetry_plane_is_refused():
 
 @pytest.mark.parametrize("section,area", [
     ("double_wedge", 0.5 * 1.0 * 0.08),                 # diamond
-    ("square", 1.0 * 0.08 - 0.5 * 0.08 * 0.08),         # real LE, TE closed over t
+    # square and rounded: LE rounded with radius t/2 (two quarter circles), TE closed over t
+    ("square", 1.0 * 0.08 - 0.5 * 0.08 * 0.08 - (1 - np.pi / 4) * 0.08 * 0.08 / 2),
+    ("rounded", 1.0 * 0.08 - 0.5 * 0.08 * 0.08 - (1 - np.pi / 4) * 0.08 * 0.08 / 2),
 ])
 def test_fin_section_area(section, area):
     f = _rocket(section).fins[0]
