@@ -425,6 +425,14 @@ def interference_factor(span: float, body_radius: float) -> float:
     return 1.0 + r / (s + r)
 
 
+def slender_body_interference(span: float, body_radius: float) -> float:
+    """Fin-body lift factor with the body's carry-over, K_W(B) + K_B(W) = (1 + r/(s + r))^2 [-]
+    (slender-body theory, Pitts, Nielsen & Kaattari, NACA Report 1307, 1957), for
+    references; Barrowman's :func:`interference_factor` is its first factor only (no
+    lift carried over onto the body).  span, body_radius [m]."""
+    return interference_factor(span, body_radius) ** 2
+
+
 def single_fin_cn_alpha(planform: FinPlanform, mach, reference_area: float, section_slope=None):
     """Slope of one isolated fin, angle to its plane [1/rad]; symbolic-safe in ``mach``.
 

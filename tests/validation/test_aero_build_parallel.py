@@ -79,9 +79,15 @@ def test_core_table_equals_a_core_only_build(built):
 def test_booster_set_against_barrowman_component_sum(built):
     """The boosters' share of the stack's normal-force slope and its CP against the
     Barrowman build-up of the same two boosters (the empirical path's lift sums,
-    stack minus core).  Tolerances: CN-alpha 10 % (measured -6.9 % at Mach 0.3, -4.8 %
-    at 0.6: panel vs Barrowman's slender-body nose and fin-in-body factors), CP 5 mm
-    (3 % of the booster's 171 mm; measured 2.7, 2.9 mm)."""
+    stack minus core) with the booster fins' lift carried over onto the booster
+    bodies, which Barrowman's fin-body factor 1 + r/(s + r) leaves out: slender-body
+    K_W(B) + K_B(W) = (1 + r/(s + r))^2 (Pitts, Nielsen & Kaattari, NACA Rep. 1307).
+    Tolerances: CN-alpha 12 % (the panel solver against this estimate on Allen's five
+    fin sets: -9 ... +5 %), CP 5 mm (3 % of the booster's 171 mm).  Measured (session
+    14, square fins meshed as rounded): -3.0 % / -1.7 % at Mach 0.3 / 0.6, CP 4.3 / 4.9 mm
+    forward of the reference; before, against Barrowman
+    alone, -6.9 % / -4.8 % with the square edges' lost lift."""
+    from ironbark_opt.aero import barrowman
     from ironbark_opt.vehicle import load_setup
     stem, out = built
     stack, core = AeroTable.load(f"{stem}.csv"), AeroTable.load(f"{stem}-core.csv")
@@ -91,14 +97,24 @@ def test_booster_set_against_barrowman_component_sum(built):
     sin_a = math.sin(stack.alpha[j])
     for i, mach in enumerate(stack.mach):
         s_st, s_co = emp_stack._sums_exact(mach), emp_core._sums_exact(mach)
-        cna_ref = s_st[0] - s_co[0]
-        x_ref = (s_st[1] - s_co[1]) / cna_ref
+        cna_bw = s_st[0] - s_co[0]
+        mom = s_st[1] - s_co[1]
+        # the booster fin sets (in the stack, not in the core): their carry-over
+        geo_st, geo_co = emp_stack.lift, emp_core.lift
+        comps = geo_st.components(mach, emp_stack.reference_area)[len(geo_st.bodies):]
+        extra = [(float(c.cn_alpha) * (barrowman.slender_body_interference(f.planform.span, f.body_radius)
+                                        / barrowman.interference_factor(f.planform.span, f.body_radius) - 1),
+                  float(c.x_cp)) for f, c in zip(geo_st.fins, comps) if f not in geo_co.fins]
+        assert extra
+        cna_ref = cna_bw + sum(n for n, _ in extra)
+        x_ref = (mom + sum(n * x for n, x in extra)) / cna_ref
         d_cn = stack.values("CN_pressure")[i, j] - core.values("CN_pressure")[i, j]
         d_cm = stack.values("Cm_pressure")[i, j] - core.values("Cm_pressure")[i, j]
         x_cp = -d_cm / d_cn * stack.reference_length
-        print(f"Mach {mach:g}: boosters CN-alpha {d_cn / sin_a:.3f} (Barrowman {cna_ref:.3f}, "
-              f"{d_cn / sin_a / cna_ref - 1:+.1%}), CP {x_cp:.4f} m (Barrowman {x_ref:.4f} m)")
-        assert d_cn / sin_a == pytest.approx(cna_ref, rel=0.10)
+        print(f"Mach {mach:g}: boosters CN-alpha {d_cn / sin_a:.3f} (Barrowman with carry-over "
+              f"{cna_ref:.3f}, {d_cn / sin_a / cna_ref - 1:+.1%}; Barrowman alone {cna_bw:.3f}), "
+              f"CP {x_cp:.4f} m (reference {x_ref:.4f} m)")
+        assert d_cn / sin_a == pytest.approx(cna_ref, rel=0.12)
         assert x_cp == pytest.approx(x_ref, abs=0.005)
     for key in ("", "-core", "-booster"):                   # zero-lift pressure + base drag: no thrust
         t = AeroTable.load(f"{stem}{key}.csv")

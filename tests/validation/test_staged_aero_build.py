@@ -4,11 +4,14 @@ checked against independent references, then flown by the staged simulation.
 
 References and tolerances:
 
-* the sustainer's CN-alpha and CP at Mach 0.3 against Barrowman's (the project's
-  empirical path, `ironbark_opt.aero.model.lift_geometry`; Barrowman 1967): CN-alpha
-  within 25 % (Barrowman's fin-body interference 1 + r/(s + r) leaves out the body's
-  share of the fin lift, slender-body K_B(W) ~0.3 at r/s = 0.25, Pitts, Nielsen &
-  Kaattari NACA TR 1307: ~+20 % on the fins), CP within 0.3 calibers;
+* the sustainer's CN-alpha and CP at Mach 0.3 against Barrowman's components (the
+  project's empirical path, `ironbark_opt.aero.model.lift_geometry`; Barrowman 1967)
+  with the fins' lift carried over onto the body, which Barrowman's fin-body factor
+  1 + r/(s + r) leaves out: slender-body K_W(B) + K_B(W) = (1 + r/(s + r))^2 (Pitts,
+  Nielsen & Kaattari, NACA Rep. 1307; as test_allen_finbody's reference): CN-alpha
+  within 12 % (the panel solver against this estimate on Allen's five fin sets: -9 ...
+  +5 %), CP within 0.3 calibers.  Measured (session 14): +2.9 % with square fins meshed
+  as rounded (+9.9 % of Barrowman alone; before, the square edges' lost lift: -9.6 %);
 * the stack: its CP aft of the sustainer's; its booster fins add lift, but no more
   than 1.25 x Barrowman's isolated fins (they fly in the sustainer fins' downwash,
   which Barrowman ignores; 1.25 as above);
@@ -27,6 +30,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from ironbark_opt.aero import barrowman
 from ironbark_opt.aero.model import lift_geometry
 from ironbark_opt.aero.table import AeroTable
 from ironbark_opt.cli import main
@@ -48,14 +52,21 @@ def _slope_and_cp(table: AeroTable, mach: float) -> tuple[float, float]:
     return cn / a, table.moment_reference_x - cm / cn * table.reference_length
 
 
-def _barrowman(rocket, mach: float, fins_only_from: float | None = None) -> tuple[float, float]:
+def _barrowman(rocket, mach: float, fins_only_from: float | None = None,
+               carryover: bool = False) -> tuple[float, float]:
     """(CN-alpha [1/rad], CP [m]) by Barrowman; with ``fins_only_from`` [m] the fins
-    whose CP lies aft of it only."""
-    comps = lift_geometry(rocket).components(mach, rocket.reference_area())
-    if fins_only_from is not None:
-        comps = [c for c in comps if c.x_cp > fins_only_from]
-    cna = sum(float(c.cn_alpha) for c in comps)
-    return cna, sum(float(c.cn_alpha) * float(c.x_cp) for c in comps) / cna
+    whose CP lies aft of it only; with ``carryover`` each fin set's lift times
+    K_W(B) + K_B(W) over Barrowman's K_T(B) (the body's carry-over)."""
+    geo = lift_geometry(rocket)
+    comps = geo.components(mach, rocket.reference_area())
+    scale = [1.0] * len(geo.bodies) + [
+        barrowman.slender_body_interference(f.planform.span, f.body_radius)
+        / barrowman.interference_factor(f.planform.span, f.body_radius) if carryover else 1.0
+        for f in geo.fins]
+    pairs = [(float(c.cn_alpha) * k, float(c.x_cp)) for c, k in zip(comps, scale)
+             if fins_only_from is None or c.x_cp > fins_only_from]
+    cna = sum(n for n, _ in pairs)
+    return cna, sum(n * x for n, x in pairs) / cna
 
 
 def test_two_stage_build_and_flight(tmp_path):
@@ -74,11 +85,12 @@ def test_two_stage_build_and_flight(tmp_path):
     d = 2 * conf["sustainer"].reference_radius()
 
     cna_s, cp_s = _slope_and_cp(sus, MACH)
-    cna_b, cp_b = _barrowman(conf["sustainer"], MACH)
-    print(f"\nsustainer at Mach {MACH}: CN-alpha {cna_s:.2f} /rad (Barrowman {cna_b:.2f}, "
-          f"{100 * (cna_s / cna_b - 1):+.1f} %; tolerance 25 %), CP {cp_s:.4f} m (Barrowman {cp_b:.4f} m, "
-          f"{(cp_s - cp_b) / d:+.3f} cal; tolerance 0.3 cal)")
-    assert cna_s == pytest.approx(cna_b, rel=0.25)
+    cna_b, cp_b = _barrowman(conf["sustainer"], MACH, carryover=True)
+    cna_0, _ = _barrowman(conf["sustainer"], MACH)
+    print(f"\nsustainer at Mach {MACH}: CN-alpha {cna_s:.2f} /rad (Barrowman with carry-over {cna_b:.2f}, "
+          f"{100 * (cna_s / cna_b - 1):+.1f} %; tolerance 12 %; Barrowman alone {cna_0:.2f}), CP {cp_s:.4f} m "
+          f"(Barrowman {cp_b:.4f} m, {(cp_s - cp_b) / d:+.3f} cal; tolerance 0.3 cal)")
+    assert cna_s == pytest.approx(cna_b, rel=0.12)
     assert abs(cp_s - cp_b) <= 0.3 * d
 
     cna_k, cp_k = _slope_and_cp(stack, MACH)
