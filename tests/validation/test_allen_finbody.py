@@ -209,8 +209,7 @@ def _slender_body_cn_alpha(fin, mach):
     plan = barrowman.trapezoid_planform(_row(g, "root chord cr"), _row(g, "tip chord ct"),
                                         span, sweep)
     c1 = float(barrowman.single_fin_cn_alpha(plan, mach, math.pi * D * D / 4))
-    tau = (D / 2) / (D / 2 + span)
-    return 2.0 + 2.0 * c1 * (1.0 + tau) ** 2
+    return 2.0 + 2.0 * c1 * barrowman.slender_body_interference(span, D / 2)
 
 
 @pytest.mark.slow
