@@ -56,7 +56,13 @@ Kestrel aero build against the same command at b1525a5, paired whole-process run
 each, load ~3): 0.78x wall (15.1 / 17.3 s median), 0.80x CPU, tables identical; with
 7804b72 in the same go (its Kestrel file, load 3-4, one core effectively free: wall ~
 CPU) 7804b72 / here 3.22x, 4.00x, 2.97x in three rounds, 7804b72 / b1525a5 3.03x, 3.36x,
-2.51x.
+2.51x.  Session 14, one go (``--runs 5 --first-rounds 5 --baseline <7804b72> --aero``, load
+~1, h-kern + h-square merged): simulate / floor 2.23x, cold ballast / simulate 1.12x, rank10
+1.49x, mc1000 1.76x wall; first simulate vs the baseline's VM path 0.82x; compiled
+trajectory 1.7x the operation limit, 530x RocketPy, warm ballast 223x the root-finder;
+Kestrel aero build with compiled bytecode 16.9 / 66.3 and 19.7 / 64.7 s = 3.61x wall,
+3.39x CPU (goal 3: met); the first runs, compiling every module's bytecode, 25.4 / 63.7 s
+= 2.51x.
 
 Optional ``--baseline CHECKOUT`` (e.g. ``git worktree add /tmp/base 9829aad``):
 the first ``simulate`` of a new rocket (empty caches) here against the baseline's
