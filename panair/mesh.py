@@ -241,7 +241,7 @@ class FinGeometry:
         if self.section == "airfoil":   # NACA 00xx, Abbott & von Doenhoff (1959) eq. 6.2, closed TE
             return 5 * t * (0.2969 * np.sqrt(s) - 0.1260 * s - 0.3516 * s**2
                             + 0.2843 * s**3 - 0.1036 * s**4)
-        tail = np.clip((c - xi) / min(t, c / 2), 0.0, 1.0)       # TE closure wedge
+        tail = np.clip((c - xi) / self.trailing_edge_closure(c), 0.0, 1.0)   # TE closure wedge
         # square and rounded: a round nose of radius t/2.  A square leading edge is
         # meshed as the rounded one (subsonic meshes; supersonic ones replace both by
         # a wedge, :meth:`sharpened`).  The lift of attached potential flow is

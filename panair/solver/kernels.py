@@ -207,6 +207,16 @@ def _edge_term(ta, tb, s_a, s_b, a, q, b, h, delta):
 
 
 @njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _end_sqrt(has, raw, clipped, Lb, s0, sL):
+    """sqrt(R) at a sub-interval end of a panel edge: 0 at a root of R inside the edge
+    (``raw``, the root; ``has``: R has real roots), else the value at the edge end the
+    root was clipped to (``clipped`` = 0 or Lb), ``s0`` or ``sL``."""
+    if has and 0.0 < raw < Lb:
+        return 0.0
+    return s0 if clipped == 0.0 else sL
+
+
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_all, eq_all,
           nup_all, nuq_all, a_all, qa_all):
     """Scalar form of :func:`panair.solver.supersonic_influence._pair_potential`
@@ -251,18 +261,8 @@ def _pair(px, py, pz, j, q0, normal, e1, e2, g1, sg, e1x_nx, uk, tk, L, okL, ep_
         # bit (R(0) = a*0 + b*0 + c = c exactly: c is never -0)
         s0 = math.sqrt(max(c, 0.0))
         sL = math.sqrt(max(a * (Lb * Lb) + b * Lb + c, 0.0))
-        if has and 0.0 < lo_raw < Lb:
-            s_lo = 0.0
-        elif lo == 0.0:
-            s_lo = s0
-        else:
-            s_lo = sL
-        if has and 0.0 < hi_raw < Lb:
-            s_hi = 0.0
-        elif hi == 0.0:
-            s_hi = s0
-        else:
-            s_hi = sL
+        s_lo = _end_sqrt(has, lo_raw, lo, Lb, s0, sL)
+        s_hi = _end_sqrt(has, hi_raw, hi, Lb, s0, sL)
         # sub-intervals [0, lo], [lo, hi], [hi, Lb]; the part inside the upstream
         # Mach cone is one of them (the cone is convex); as NumPy: the last valid one,
         # so they are tried from the last and only that one is integrated

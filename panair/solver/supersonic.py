@@ -480,6 +480,15 @@ def _sonic_leading_edge(panels: PanelSet, keep, fins, mach) -> np.ndarray:
     return out
 
 
+def _divided_difference(phi0, phi1, step):
+    """The influence matrix ``(phi1 - phi0) / step[:, None]``, computed in ``phi1``'s memory
+    (the caller does not use ``phi1`` again): no two (n, n) temporaries to allocate and
+    fault in; the same operations as the expression."""
+    A = np.subtract(phi1, phi0, out=phi1)
+    A /= step[:, None]
+    return A
+
+
 class SupersonicSolver:
     """Source-panel influence matrix for one supersonic Mach number.
 
@@ -613,10 +622,7 @@ class SupersonicSolver:
             # in the x-z plane
             if self._fold is not None:
                 phi0, phi1 = self._fold.fold(phi0[rows]), self._fold.fold(phi1[rows])
-            # (phi1 - phi0) / eps in phi1's memory (not used again): no two (n, n)
-            # temporaries to allocate and fault in; the same operations
-            A = np.subtract(phi1, phi0, out=phi1)
-            A /= eps[rows, None]
+            A = _divided_difference(phi0, phi1, eps[rows])
             del phi1
             pos = (lambda j: int(self._fold.rep_of[j])) if self._fold is not None else int
             wake_rows(A, phi0, m, sheets, pos, idx)
@@ -624,10 +630,7 @@ class SupersonicSolver:
             phi1 = None
         elif self._fold is None:
             # (potential, influence matrix, rows) of the system, or of the mirror fold's two
-            A = np.subtract(phi1, phi0, out=phi1)       # in place, as above
-            A /= eps[rows, None]
-            systems = [(phi0, A, rows)]
-            del A
+            systems = [(phi0, _divided_difference(phi0, phi1, eps[rows]), rows)]
         else:
             fold = self._fold
             systems = [fold.fold_difference(phi0, phi1, rows, eps[rows]) + (rows,)]
