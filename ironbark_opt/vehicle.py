@@ -275,7 +275,8 @@ def load_setup(path, *, config: str | None = None, table=None, **kwargs) -> Flig
             from ironbark_opt.openrocket.parallel import flight_tables, parallel_setup
             return parallel_setup(doc, config, tables=flight_tables(table, doc), **kwargs)
 
-        if len(doc.rocket.stages) > 1 or doc.rocket.pods:
+        from ironbark_opt.openrocket.staging import flies_as_one
+        if (len(doc.rocket.stages) > 1 and not flies_as_one(doc, doc.config(config))) or doc.rocket.pods:
             from ironbark_opt.openrocket.parallel import parallel_setup
             from ironbark_opt.openrocket.staging import staged_setup
             if table is not None:            # serial stages: one table per flight configuration
@@ -349,7 +350,8 @@ def load_stage_configurations(path):
         return stage_configurations_from_toml(rf)
     from ironbark_opt.openrocket import read_ork
     doc = read_ork(path)
-    if len(doc.rocket.stages) < 2 or doc.rocket.pods:
+    from ironbark_opt.openrocket.staging import flies_as_one
+    if len(doc.rocket.stages) < 2 or doc.rocket.pods or flies_as_one(doc):
         return None
     from ironbark_opt.openrocket.stage_tables import configurations
     return configurations(doc)

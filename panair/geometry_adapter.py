@@ -31,6 +31,7 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
     RocketGeometry (lengths [m]).
     """
     x, r = rocket.body_profile(n_profile)
+    _check_no_pinch(np.asarray(x, float), np.asarray(r, float))
     fins = []
     for k, fs in enumerate(rocket.fin_sets()):
         outline = None
@@ -63,6 +64,31 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
                                 te_bevel=sec.te_bevel, outline=outline))
     x, r = _continue_past_fins(np.asarray(x, float), np.asarray(r, float), fins)
     return RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name)
+
+
+#: An interior station narrower than this fraction of the largest radius, with the body
+#: widening again behind it, is a pinch the panel mesh cannot represent [-]
+PINCH_FRACTION = 0.02
+
+
+def _check_no_pinch(x, r):
+    """Refuse a body that narrows to (almost) nothing and widens again, e.g. OpenRocket's
+    'base drag hack' (a tube ending in a flat base, then a transition from ~0 radius out to
+    the tube's): its near-zero-radius panels make the influence matrix singular (measured:
+    |Cp| up to 1e13, a CN at zero alpha), which is a silently wrong table, not a solution.
+    The nose tip and a tail closing to a point are not pinches."""
+    r_max = float(np.max(r))
+    thin = r < PINCH_FRACTION * r_max
+    widest_ahead = np.maximum.accumulate(r)
+    widest_behind = np.maximum.accumulate(r[::-1])[::-1]
+    pinch = thin & (widest_ahead > 0.5 * r_max) & (widest_behind > 0.5 * r_max)
+    if np.any(pinch):
+        i = int(np.argmax(pinch))
+        raise InputError(
+            f"the body narrows to a radius of {1e3 * r[i]:.3g} mm at x = {x[i]:.4g} m and widens "
+            f"again behind it (largest radius {1e3 * r_max:.3g} mm): a panel mesh cannot represent "
+            "such a pinch (OpenRocket's 'base drag hack' transition is one); fly the empirical "
+            "aerodynamics (no --table), or model the base as a base", field="body")
 
 
 #: Length of the body continued behind fins that reach the base [root chords]

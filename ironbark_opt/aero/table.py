@@ -218,6 +218,9 @@ def _safe_name(name: str) -> str:
 FORMAT_NAME = "ironbark-aerotable"
 FORMAT_VERSION = 1
 INCLUDES_ALLOWED = ("pressure", "friction", "base", "crossflow")
+#: Largest |coefficient| a table may hold [-]: a body at 90 deg with l/d 30 has CN ~ 50 and
+#: Cm ~ 1e3, pitch damping of long rockets reaches ~1e4; a singular panel solution gave 6e9
+COEFFICIENT_MAX = 1e6
 FRAME_CONVENTION = (
     "body axes, aeroballistic: alpha = total angle of attack; CA axial force positive "
     "rearward (toward the base); CN normal force positive toward the crossflow side; "
@@ -317,6 +320,12 @@ class AeroTable:
             if not np.all(np.isfinite(arr)):
                 raise InputError(f"coefficient '{cname}' has NaN or infinite values",
                                  source=self.source, field=cname)
+            if np.max(np.abs(arr)) > COEFFICIENT_MAX:
+                k = np.unravel_index(int(np.argmax(np.abs(arr))), arr.shape)
+                where = ", ".join(f"{n} {float(a[i]):.4g}" for n, a, i in zip(names, axes, k))
+                raise InputError(f"coefficient '{cname}' reaches {arr[k]:.3g} ({where}): not an "
+                                 f"aerodynamic coefficient (|value| <= {COEFFICIENT_MAX:g}); "
+                                 "the table is broken, rebuild it", source=self.source, field=cname)
             self._splines[cname] = GridSpline(axes, arr, name=cname, axis_names=names)
 
     # ---------------------------------------------------------------- queries

@@ -126,9 +126,14 @@ def build(rocket, mach, alpha_deg, out, workers, refine, use_panair, no_progress
         ckpt = None if no_resume else Path(str(stem) + ".solved")
         extra = {"rocket_file": str(rocket), "peak_mach_estimate": peak,
                  **(conf.metadata() if conf is not None else {})}
-        table = rocket_table(rk, aero_spec, mach_v, alpha_v, refine=refine, workers=workers,
-                             progress=not no_progress and not as_json, use_panair=use_panair,
-                             checkpoint_dir=ckpt, extra_metadata=extra, pool=pool)
+        try:
+            table = rocket_table(rk, aero_spec, mach_v, alpha_v, refine=refine, workers=workers,
+                                 progress=not no_progress and not as_json, use_panair=use_panair,
+                                 checkpoint_dir=ckpt, extra_metadata=extra, pool=pool)
+        except InputError as err:       # the panel geometry's own checks: name the rocket file
+            if err.source is not None:
+                raise
+            raise InputError(err.message, source=rocket, field=err.field) from None
         return conf, rk, stem, ckpt, table
 
     if len(parts) > 1 and workers > 1:

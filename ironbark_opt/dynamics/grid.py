@@ -140,7 +140,13 @@ class GridMixin:
         t = np.broadcast_to(np.asarray(t, dtype=float), (x.shape[1],))
         p = np.asarray(p, dtype=float)
         p = np.repeat(p[:, None], x.shape[1], axis=1) if p.ndim == 1 else p
-        lam = max(np.max(np.abs(np.linalg.eigvals(np.array(jac(x[:, i], t[i], p[:, i]))))) for i in range(x.shape[1]))
+        jacs = [np.array(jac(x[:, i], t[i], p[:, i])) for i in range(x.shape[1])]
+        bad = next((i for i, j in enumerate(jacs) if not np.all(np.isfinite(j))), None)
+        if bad is not None:
+            raise SolverError(f"the equations of motion are not finite at t = {float(t[bad]):.3g} s of "
+                              "the nominal flight (state or forces NaN/inf): check the aerodynamic "
+                              "table (--table) and the motor file for non-finite or absurd values")
+        lam = max(np.max(np.abs(np.linalg.eigvals(j))) for j in jacs)
         return STABLE_LAMBDA_DT / lam if lam > 0 else np.inf
 
     def _coast_grid(self, x_b, t_b, t_end, p):

@@ -34,9 +34,11 @@ _IGNITE_AT_LAUNCH = ("automatic", "launch", "ignition")
 
 def _single_stage(doc: OrkDocument, what: str, instead: str,
                   pods: str = "cannot be converted to one rocket file; the flight commands (e.g. "
-                              "'simulate') fly it from the .ork") -> None:
-    """InputError naming the second stage of a multi-stage rocket."""
-    if len(doc.rocket.stages) > 1:
+                              "'simulate') fly it from the .ork", config=None) -> None:
+    """InputError naming the second stage of a multi-stage rocket (not for stages that
+    stay together to apogee, :func:`~ironbark_opt.openrocket.staging.flies_as_one`)."""
+    from ironbark_opt.openrocket.staging import flies_as_one
+    if len(doc.rocket.stages) > 1 and not flies_as_one(doc, config):
         s = doc.rocket.stages[1]
         raise InputError(f"{what} not supported yet (stage '{s.name}'); remove the lower stages "
                          f"to {instead}", source=doc.path, field=s.path)
@@ -47,7 +49,7 @@ def _single_stage(doc: OrkDocument, what: str, instead: str,
 
 def check_flyable(doc: OrkDocument, config) -> None:
     """InputError naming the first feature of ``config`` we cannot fly yet."""
-    _single_stage(doc, "multi-stage separation is", "fly the sustainer alone")
+    _single_stage(doc, "multi-stage separation is", "fly the sustainer alone", config=config)
     for mount, entry in config.motors:
         if entry.ignition_event not in _IGNITE_AT_LAUNCH:
             raise InputError(f"ignition on '{entry.ignition_event}' is not supported in one stage: motor "
@@ -90,6 +92,13 @@ def geometry(doc: OrkDocument) -> Rocket:
     guide = None
     buttons = []                                    # (component, its buttons' stations [m])
     for c in doc.rocket.core_components():          # parallel boosters: openrocket.parallel
+        if c.kind == "tubefinset":
+            # neither aero path models a tube fin's lift or drag (OpenRocket uses Ribner's
+            # ring-airfoil slope); flying without it would put the CP far forward and call a
+            # stable rocket unstable, or fly a wrong drag
+            raise c.element.error(f"tube fins (tubefinset) '{c.name}' cannot be flown by "
+                                  f"Ironbark-Opt yet: their lift and drag are not modelled; "
+                                  f"replace them by flat fins of similar area, or remove them")
         if c.kind in FINS:
             comps.append(convert.fin_set(c))
         elif c.kind == "railbutton":

@@ -61,6 +61,33 @@ def stage_events(doc: OrkDocument, config) -> dict:
     return {"booster": (m_b, e_b), "sustainer": (m_s, e_s), "delay": float(delay), "separation_event": event}
 
 
+#: separation events that come at or after the recovery charge: to apogee the stack is one body
+_LATE_SEPARATION = ("ejection", "never")
+
+
+def flies_as_one(doc: OrkDocument, config=None) -> bool:
+    """True when the stages of a multi-stage design stay together up to apogee in
+    ``config`` (default: in every configuration that has a motor): each lower stage
+    separates on the recovery charge (``ejection``) or ``never``, or on the ignition of
+    the stage above it when that stage has no motor (OpenRocket then never separates
+    it).  The American Rocketry Challenge layout (a motorless payload stage above a
+    booster that separates on ejection, OpenRocket's 'ARC payload rocket') is one rocket
+    to apogee.  Parallel boosters never count (numeric-only)."""
+    if len(doc.rocket.stages) < 2 or doc.rocket.pods:
+        return False
+    configs = [config] if config is not None else [c for c in doc.configs if c.motors]
+    if not configs:
+        return False
+    for cfg in configs:
+        lit = {mount.stage for mount, _ in cfg.motors}
+        for i, stage in enumerate(doc.rocket.stages[1:], start=1):
+            event, _ = _separation(stage, cfg.config_id)
+            if event in _LATE_SEPARATION or (event == "upperignition" and i - 1 not in lit):
+                continue
+            return False
+    return True
+
+
 def _separation(stage, config_id: str) -> tuple[str, float]:
     el = stage.element
     event, delay = (el.text("separationevent") or "upperignition").lower(), el.number("separationdelay", 0.0)

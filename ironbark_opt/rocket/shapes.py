@@ -80,7 +80,8 @@ def shape_radius(shape: str, parameter, x, length: float, radius: float):
     if shape == "tangent_ogive":
         # Crowell, "Tangent ogive": rho = (R^2 + L^2) / (2 R)
         rho = (R * R + L * L) / (2.0 * R)
-        return np.sqrt(np.maximum(rho * rho - (L - xi * L) ** 2, 0.0)) + R - rho
+        # the tip is 0 exactly (rounding left -1e-16 there, which the panel mesh refused)
+        return np.maximum(np.sqrt(np.maximum(rho * rho - (L - xi * L) ** 2, 0.0)) + R - rho, 0.0)
     if shape == "secant_ogive":
         # Crowell, "Secant ogive": alpha = atan(R/L) - acos(sqrt(L^2+R^2) / (2 rho))
         rho = parameter

@@ -266,3 +266,19 @@ def test_reynolds_axis_drift_and_round_trip(tmp_path):
     with pytest.raises(InputError, match="> 0"):
         AeroTable([0.1, 0.2], [0.0], {"CA": np.ones((2, 1, 2))}, reference_area=1.0,
                   reference_length=1.0, moment_reference_x=0.0, reynolds=[0.0, 1e6])
+
+
+def test_absurd_coefficient_is_refused_naming_it():
+    """A broken build once wrote CA -7.3e9 (singular panel solution): loading refuses
+    any |coefficient| above COEFFICIENT_MAX, naming the coefficient and where."""
+    from ironbark_opt.aero.table import COEFFICIENT_MAX
+    mm, aa = np.meshgrid(MACH, ALPHA, indexing="ij")
+    ca = _smooth(mm, aa)
+    ca[2, 1] = -7.3e9
+    with pytest.raises(InputError, match=r"coefficient 'CA' reaches -7\.3e\+09") as err:
+        AeroTable(MACH, ALPHA, {"CA": ca}, reference_area=0.0127, reference_length=0.127,
+                   moment_reference_x=1.3)
+    assert err.value.field == "CA"
+    ca[2, 1] = 0.5 * COEFFICIENT_MAX           # large but allowed
+    AeroTable(MACH, ALPHA, {"CA": ca}, reference_area=0.0127, reference_length=0.127,
+                   moment_reference_x=1.3)

@@ -137,3 +137,14 @@ def test_tangent_ogive_matches_the_panair_reference_mesh():
     print(f"tangent ogive vs PANAIR mesh: max |dr| = {err:.2e} m over {len(x)} stations "
           f"(tol 1e-6 m; file has 8 digits)")
     assert len(x) == 25 and err < 1e-6
+
+
+def test_tangent_ogive_radius_never_negative():
+    """OpenRocket's 'Chute release' nose (L = 0.24765 m, R = 0.03175 m): the closed-form
+    tangent ogive gave -1.1e-16 m at the tip by rounding, which the panel mesh refused
+    ('body ... r >= 0'); the tip is 0 and every radius >= 0 (exact: r(0) = 0)."""
+    from ironbark_opt.rocket.shapes import shape_radius
+    for length, radius in ((0.24765, 0.03175), (0.3, 0.05), (0.1, 0.0127)):
+        r = shape_radius("tangent_ogive", None, np.linspace(0.0, length, 2001), length, radius)
+        assert r[0] == 0.0 and np.all(r >= 0.0)
+        assert r[-1] == pytest.approx(radius, rel=1e-12)

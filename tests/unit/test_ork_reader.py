@@ -279,3 +279,19 @@ def test_wind_direction_is_where_the_wind_comes_from():
     top = df["altitude_m"].idxmax()
     assert df.loc[top, "east_m"] > 10.0 and df["east_m"].iloc[-1] < -50.0
     assert sim.launch.wind_from == pytest.approx(math.pi / 2)
+
+
+def test_tube_fins_are_refused_not_flown_without_their_lift(tmp_path):
+    """A tube fin set (here the simple rocket's launch lug turned into one) has neither
+    lift nor drag in either aero path: flying the rocket without it would call a stable
+    rocket unstable (OpenRocket's 'Tube fin rocket': static margin -15 cal) or fly a
+    wrong drag, so the build refuses it, naming the component."""
+    from ironbark_opt.openrocket.build import geometry
+    text = _xml("A simple model rocket.ork").replace("<launchlug>", "<tubefinset>", 1) \
+        .replace("</launchlug>", "</tubefinset>", 1) \
+        .replace("<radius>0.0035</radius>", "<outerradius>0.0035</outerradius>", 1)
+    doc = read_ork(_write(tmp_path, text, "tubefins.ork"))
+    assert any(c.kind == "tubefinset" for c in doc.rocket.components())
+    with pytest.raises(InputError, match="tube fins .* cannot be flown") as err:
+        geometry(doc)
+    assert err.value.field.endswith("tubefinset[1]")
