@@ -36,6 +36,15 @@ def ork_offline(monkeypatch, tmp_path):
     monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(DATA / "ork" / "motors"))
 
 
+@pytest.fixture
+def ork_all_motors(monkeypatch, tmp_path):
+    """As ork_offline, motors from tests/data/ork/motors, then tests/data/motors."""
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", os.pathsep.join(
+        [str(DATA / "ork" / "motors"), str(DATA / "motors")]))
+
+
 @pytest.fixture(scope="session")
 def coarse_finner_panels():
     """A coarse Basic Finner half model's PanelSet (body 10 calibers, four fins)."""

@@ -11,7 +11,6 @@ with nothing lit above it (a boosted dart) is two bodies and stays refused.
 
 Measured (session 15): every stored simulation within -1.6 ... +0.3 % of the apogee
 OpenRocket stored (A8-3 to C6-7)."""
-import os
 import re
 from pathlib import Path
 
@@ -28,14 +27,6 @@ DATA = Path(__file__).parents[1] / "data"
 ORK = DATA / "ork" / "Deployable payload.ork"
 
 
-@pytest.fixture
-def motor_path(monkeypatch, tmp_path):
-    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
-    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
-    monkeypatch.setenv("IRONBARK_MOTOR_PATH", os.pathsep.join(
-        [str(DATA / "ork" / "motors"), str(DATA / "motors")]))
-
-
 def test_stages_that_separate_on_ejection_are_one_body():
     doc = read_ork(ORK)
     assert len(doc.rocket.stages) == 2 and flies_as_one(doc)
@@ -43,7 +34,7 @@ def test_stages_that_separate_on_ejection_are_one_body():
 
 
 @pytest.mark.parametrize("index", [0, 1, 3, 4])
-def test_every_stored_simulation_within_five_percent(index, motor_path):
+def test_every_stored_simulation_within_five_percent(index, ork_all_motors):
     doc = read_ork(ORK)
     sim = doc.simulations[index]
     setup = load_setup(ORK, config=sim.name, rail_exit="travel")     # OpenRocket: rod travel
@@ -55,7 +46,7 @@ def test_every_stored_simulation_within_five_percent(index, motor_path):
     assert abs(err) < 0.05
 
 
-def test_separation_on_burnout_without_an_upper_motor_is_refused(motor_path, tmp_path):
+def test_separation_on_burnout_without_an_upper_motor_is_refused(ork_all_motors, tmp_path):
     text = read_bytes(ORK).decode("utf-8")
     text = re.sub(r"<separationevent>ejection</separationevent>",
                   "<separationevent>burnout</separationevent>", text)

@@ -6,7 +6,6 @@ The G80T the design names is OpenRocket's 136 N s G80 (NAR 2007 data, file
 ``AeroTech_G80_1.eng`` whose header calls it ``G78``): it is found by OpenRocket's
 motor digest, not by its header name, and wins over the other G80 files on the
 search path (the 94 N s and 100 N s G80T of tests/data/motors)."""
-import os
 from pathlib import Path
 
 import pytest
@@ -20,16 +19,8 @@ DATA = Path(__file__).parents[1] / "data"
 ORK = DATA / "ork" / "01.One-stage_OR22.02.ork"
 
 
-@pytest.fixture
-def motor_path(monkeypatch, tmp_path):
-    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
-    monkeypatch.setenv("IRONBARK_CACHE_DIR", str(tmp_path))
-    monkeypatch.setenv("IRONBARK_MOTOR_PATH", os.pathsep.join(
-        [str(DATA / "ork" / "motors"), str(DATA / "motors")]))
-
-
 @pytest.mark.parametrize("index", range(2))
-def test_every_stored_simulation_flies_within_ten_percent(index, motor_path):
+def test_every_stored_simulation_flies_within_ten_percent(index, ork_all_motors):
     doc = read_ork(ORK)
     sim = doc.simulations[index]
     setup = load_setup(ORK, config=sim.config_id, rail_exit="travel")   # OpenRocket: rod travel
@@ -46,7 +37,7 @@ def test_every_stored_simulation_flies_within_ten_percent(index, motor_path):
     assert setup.motor.total_mass == pytest.approx(data["motor_mass_kg"].iloc[0], abs=0.0015)
 
 
-def test_g80t_is_found_by_digest_not_header_name(motor_path):
+def test_g80t_is_found_by_digest_not_header_name(ork_all_motors):
     from ironbark_opt.openrocket.motors import find_motor_file
     doc = read_ork(ORK)
     entry = next(e for _, e in doc.config("G80T").motors)
