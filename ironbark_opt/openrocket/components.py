@@ -321,7 +321,8 @@ def parse_geometry(el: Element) -> tuple[dict, float]:
     if k == "tubefinset":
         g["length"] = el.number("length", required=True, minimum=0.0)
         g["count"] = int(el.number("fincount", 6, minimum=1))
-        g["outer_radius"] = _radius(el, "outerradius")
+        # OpenRocket's TubeFinSet writes its outer radius as <radius> ('auto': tree.py)
+        g["outer_radius"] = _radius(el, "radius")
         g["thickness"] = el.number("thickness", 0.0, minimum=0.0)
         return g, g["length"]
     return g, 0.0
