@@ -534,6 +534,24 @@ def fins(planform: FinPlanform, count: int, x_root_le: float, body_radius: float
     return Lift(cna, x_cp, "fins")
 
 
+def tube_fins(count: int, x_le: float, length: float, inner_radius: float,
+              reference_area: float, mach=0.0) -> Lift:
+    """A tube fin set: each of the ``count`` tubes a ring wing of diameter 2 r_i and chord
+    l, CN_alpha = 2 A'/(1 + A') pi^2 r_i l / S_ref with A' = 2 A / pi, A = 2 r_i / l
+    (Ribner, "The ring airfoil in nonaxial flow", J. Aeronaut. Sci. 14(9), 1947, eq. 5, as
+    OpenRocket 23.09's TubeFinSetCalc applies it): a ring's lift does not depend on its
+    roll position, so every tube counts; interference between the tubes and with the
+    body is neglected (as there).  x_cp = x_le + :func:`fin_cp_fraction` (A) l.
+    Symbolic-safe in ``mach``; lengths [m], reference_area [m^2]."""
+    r, c = _positive(inner_radius, "inner_radius", "m"), _positive(length, "length", "m")
+    ar = 2.0 * r / c
+    a_prime = 2.0 * ar / math.pi
+    cna = int(count) * 2.0 * a_prime / (1.0 + a_prime) * math.pi ** 2 * r * c \
+        / _positive(reference_area, "reference_area", "m^2")
+    x_cp = _number(x_le, "x_le") + fin_cp_fraction(ar, mach) * c
+    return Lift(cna + 0.0 * mach, x_cp, "tube fins")
+
+
 def trapezoidal_fins(count: int, root_chord: float, tip_chord: float, span: float,
                      sweep_length: float, x_root_le: float, body_radius: float,
                      reference_area: float, mach=0.0) -> Lift:

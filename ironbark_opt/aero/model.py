@@ -64,6 +64,8 @@ class LiftGeometry:
     planform_area: float     # [m^2] body side projection, for the viscous cross-flow
     planform_centroid_x: float  # [m]
     fineness_ratio: float    # [-] body length / maximum diameter (cross-flow eta)
+    #: tube fin sets: (count, x_le [m], length [m], inner_radius [m]) each
+    tubes: tuple = ()
 
     def components(self, mach, reference_area: float):
         """Barrowman Lift components at ``mach`` (symbolic-safe)."""
@@ -72,6 +74,8 @@ class LiftGeometry:
         for f in self.fins:
             comps.append(barrowman.fins(f.planform, f.count, f.x_root_le, f.body_radius,
                                         reference_area, mach, section_slope(f.section_lift)))
+        for count, x_le, length, r_in in self.tubes:
+            comps.append(barrowman.tube_fins(count, x_le, length, r_in, reference_area, mach))
         return comps
 
 
@@ -311,10 +315,12 @@ def lift_geometry(rocket) -> LiftGeometry:
             plan = barrowman.polygon_planform(pts)
         r_body = float(rocket.radius_at(fs.x + 0.5 * float(pts[-1, 0])))   # at mid root chord
         fins.append(FinGeometry(plan, fs.count, fs.x, r_body, fs.cant, fs.section_lift))
-    if not bodies and not fins:
+    tubes = tuple((t.count, t.x, t.length, t.inner_radius) for t in rocket.tube_fin_sets()
+                  if t.inner_radius > 0)
+    if not bodies and not fins and not tubes:
         raise InputError("the rocket has no nose, transition or fins: no normal force", field="components")
     return LiftGeometry(tuple(bodies), tuple(fins), plan_area, plan_moment / plan_area if plan_area else 0.0,
-                        rocket.fineness())
+                        rocket.fineness(), tubes)
 
 
 def _own_roughness(component, default: float) -> float:
@@ -365,6 +371,20 @@ def guide_drag(rocket, roughness: float = 60e-6) -> tuple[tuple, tuple[str, ...]
     return tuple(out), assumed
 
 
+def tube_fin_drag(rocket, roughness: float = 60e-6) -> tuple:
+    """The tube fin sets' drag increments of ``rocket`` (open tubes,
+    :class:`~ironbark_opt.aero.protuberance.LaunchLugDrag` with ``count``, their own
+    wetted and interstice areas; numeric-only)."""
+    from ironbark_opt.aero.protuberance import LaunchLugDrag
+    out = []
+    for t in rocket.tube_fin_sets():
+        k = min(roughness, 0.5 * t.inner_radius if t.inner_radius > 0 else 0.5 * t.length)
+        out.append(LaunchLugDrag(t.x + 0.5 * t.length, t.length, t.outer_radius, t.inner_radius,
+                                 roughness=k, name=t.name, wetted_area=t.wetted_area_each(),
+                                 extra_frontal_area=t.interstice_area_each(), count=t.count))
+    return tuple(out)
+
+
 def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re_transition: float = 5e5,
                      jet_area: float = 0.0, jet_area_source: str = "", guides: bool = True) -> AeroModel:
     """Assemble the model of ``rocket`` (numeric-only; the result is symbolic-safe).
@@ -401,6 +421,7 @@ def build_aero_model(rocket, *, table=None, surface_roughness: float = 60e-6, re
     friction = None
     if "friction" not in includes:
         extra, assumed = guide_drag(rocket, surface_roughness) if guides else ((), ())
+        extra = extra + tube_fin_drag(rocket, surface_roughness)
         if extra and assumed:
             warnings.warn(f"{rocket.name}: the rail buttons' size is not given; their drag assumes "
                           f"OpenRocket's default button ({', '.join(f'{k} {v * 1e3:g} mm' for k, v in DEFAULT_BUTTON.items() if k in assumed)}"

@@ -1,4 +1,4 @@
-"""Zero-lift axial force of the launch guides: rail buttons and launch lugs.
+"""Zero-lift axial force of the launch guides (rail buttons, launch lugs) and tube fins.
 
 Both are small bluff bodies on the body surface; their drag is an increment of CA
 [-, on the rocket's reference area] that depends on the Mach number and, for the
@@ -57,6 +57,13 @@ at the matching local speed):
   (Niskanen's older solid-cylinder estimate, sec. 3.4.4, max(1.3 - 0.3 l/d, 1)
   0.85 q_stag/q on pi r_o^2 for l > d, treats a lug as closed; a lug of l/d ~ 5
   passes air.)
+
+**Tube fins** (OpenRocket's ``TubeFinSet``): each tube is such an open tube
+(``count`` of them), with OpenRocket 23.09's ``TubeFinSetCalc`` geometry: skin
+friction only on the outer surface the body does not mask, and the interstice
+between two neighbouring tubes and the body (its frontal area) carrying the blunt
+face's stagnation and base pressure like the annulus
+(:class:`~ironbark_opt.rocket.hardware.TubeFins`).
 
 All ``CA`` methods are symbolic-safe.
 """
@@ -211,6 +218,12 @@ class LaunchLugDrag:
     inner_radius: float
     roughness: float = 0.0
     name: str = "launch lug"
+    #: outer surface with skin friction [m^2] (None: the whole 2 pi r_o l)
+    wetted_area: float | None = None
+    #: blunt frontal area besides the annulus [m^2] (stagnation + base, as the annulus)
+    extra_frontal_area: float = 0.0
+    #: identical tubes (a tube fin set) [-]
+    count: int = 1
 
     def __post_init__(self):
         ro = v.positive(self.outer_radius, "outer_radius")
@@ -223,8 +236,12 @@ class LaunchLugDrag:
         if not k < min(length, 2.0 * ri if ri > 0 else length):
             raise InputError(f"roughness ({k} m) must be smaller than the bore and the length",
                              field="roughness")
+        wetted = 2.0 * math.pi * ro * length if self.wetted_area is None else \
+            v.nonnegative(self.wetted_area, "wetted_area", "m^2")
         v.set_fields(self, x=v.nonnegative(self.x, "x"), length=length, outer_radius=ro,
-                     inner_radius=ri, roughness=k)
+                     inner_radius=ri, roughness=k, wetted_area=wetted,
+                     extra_frontal_area=v.nonnegative(self.extra_frontal_area, "extra_frontal_area", "m^2"),
+                     count=int(v.positive(self.count, "count")))
 
     def q_ratio(self, reynolds_per_m):
         """Mean q over the lug's height 2 r_o in the body's boundary layer / free-stream q [-]."""
@@ -238,11 +255,12 @@ class LaunchLugDrag:
         ratio = self.q_ratio(reynolds_per_m)
         speed = m.sqrt(ratio)                                   # local / free-stream velocity
         mach_local, re_local = mach * speed, m.fmax(reynolds_per_m, 1.0) * speed
-        ca = (0.85 * stagnation_ratio(mach_local) + cd_base(mach_local)) * math.pi * (ro * ro - ri * ri)
+        ca = (0.85 * stagnation_ratio(mach_local) + cd_base(mach_local)) \
+            * (math.pi * (ro * ro - ri * ri) + self.extra_frontal_area)
         if ri > 0.0:
             d = 2.0 * ri
             f = churchill_friction_factor(re_local * d, self.roughness / d)
             ca = ca + f * (length / d) * math.pi * ri * ri
         cf = cf_flat_plate(mach_local, re_local * length, length, self.roughness)
-        ca = ca + cf * 2.0 * math.pi * ro * length
-        return ratio * ca / reference_area
+        ca = ca + cf * self.wetted_area
+        return self.count * ratio * ca / reference_area

@@ -21,7 +21,7 @@ from ironbark_opt.openrocket import convert
 from ironbark_opt.openrocket.components import FINS
 from ironbark_opt.openrocket.document import OrkDocument, nozzle_x, read_ork
 from ironbark_opt.openrocket.motors import find_motor_file
-from ironbark_opt.rocket.hardware import LaunchLug, RailButtons
+from ironbark_opt.rocket.hardware import LaunchLug, RailButtons, TubeFins
 from ironbark_opt.rocket.rocket import Rocket
 from ironbark_opt.rocket.specs import AeroSpec, BallastSpec, LaunchSpec, MotorSpec, RecoverySpec
 
@@ -93,12 +93,15 @@ def geometry(doc: OrkDocument) -> Rocket:
     buttons = []                                    # (component, its buttons' stations [m])
     for c in doc.rocket.core_components():          # parallel boosters: openrocket.parallel
         if c.kind == "tubefinset":
-            # neither aero path models a tube fin's lift or drag (OpenRocket uses Ribner's
-            # ring-airfoil slope); flying without it would put the CP far forward and call a
-            # stable rocket unstable, or fly a wrong drag
-            raise c.element.error(f"tube fins (tubefinset) '{c.name}' cannot be flown by "
-                                  f"Ironbark-Opt yet: their lift and drag are not modelled; "
-                                  f"replace them by flat fins of similar area, or remove them")
+            g = c.geo
+            ro, rb = float(g["outer_radius"] or 0.0), float(g.get("parent_radius") or 0.0)
+            if not (ro > 0 and rb > 0):
+                raise c.element.error(f"tube fins '{c.name}' need a radius > 0 and a body tube "
+                                      f"under them", "radius")
+            ri = ro - min(max(g["thickness"], 1e-6 * ro), ro)
+            comps.append(TubeFins(x=c.x, length=g["length"], outer_radius=ro, inner_radius=ri,
+                                  count=g["count"], body_radius=rb, name=c.name))
+            continue
         if c.kind in FINS:
             comps.append(convert.fin_set(c))
         elif c.kind == "railbutton":

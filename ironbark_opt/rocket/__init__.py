@@ -17,7 +17,7 @@ x [m] is measured aft from the nose tip everywhere.
 from ironbark_opt.rocket.body import BodyTube, Transition
 from ironbark_opt.rocket.fin_sections import FinSection
 from ironbark_opt.rocket.fins import EllipticalFins, FinSet, FreeformFins, TrapezoidalFins
-from ironbark_opt.rocket.hardware import InnerTube, LaunchLug, PointMass, RailButtons
+from ironbark_opt.rocket.hardware import InnerTube, LaunchLug, PointMass, RailButtons, TubeFins
 from ironbark_opt.rocket.mass import (MassProperties, combine, combine_properties,
                                       dry_from_wet, total_mass_properties)
 from ironbark_opt.rocket.materials import FINISHES, MATERIALS, material_density
@@ -31,7 +31,7 @@ __all__ = [
     "AeroSpec", "BallastSpec", "BodyTube", "EllipticalFins", "FINISHES", "FinSection", "FinSet",
     "FreeformFins", "InnerTube", "LaunchLug", "LaunchSpec", "MATERIALS", "MassProperties", "MotorSpec",
     "NoseCone", "PointMass", "RailButtons", "RecoverySpec", "Rocket", "RocketFile",
-    "TrapezoidalFins", "Transition", "combine", "combine_properties", "dry_from_wet",
+    "TrapezoidalFins", "Transition", "TubeFins", "combine", "combine_properties", "dry_from_wet",
     "dump_rocket_toml", "load_rocket_toml", "loads_rocket_toml", "material_density", "to_toml",
     "total_mass_properties",
 ]

@@ -1,4 +1,4 @@
-"""Rail buttons, launch lugs, point masses and inner tubes (value objects; numeric-only).
+"""Rail buttons, launch lugs, tube fins, point masses and inner tubes (value objects; numeric-only).
 
 These items are treated as lying on the rocket axis for the mass build-up:
 the radial offset of a few grams of rail hardware at the body radius adds
@@ -232,6 +232,76 @@ class LaunchLug:
         ro, ri, L = self.outer_radius, self.inner_radius, self.length
         m = self.density * np.pi * (ro * ro - ri * ri) * L
         return MassProperties.axisymmetric(m, self.x + 0.5 * L, m * L * L / 12.0, 0.0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class TubeFins:
+    """A tube fin set (OpenRocket ``TubeFinSet``): ``count`` open tubes of ``length`` [m]
+    lying along the body, each touching the body surface (their axes at
+    ``body_radius + outer_radius`` from the rocket's).
+
+    Lift: each tube a ring wing (Ribner, :func:`~ironbark_opt.aero.barrowman.tube_fins`);
+    drag: open tubes (:class:`~ironbark_opt.aero.protuberance.LaunchLugDrag`, ``count``).
+    The wetted and interstice areas are OpenRocket 23.09's ``TubeFinSetCalc`` geometry.
+
+    Parameters
+    ----------
+    x : float [m]
+        Front end, aft of the nose tip.
+    length : float [m]
+    outer_radius, inner_radius : float [m]
+    count : int
+    body_radius : float [m]
+        Body radius under the tubes.
+    density : float [kg/m^3] or None
+    name : str
+    """
+
+    x: float = 0.0
+    length: float = 0.0
+    outer_radius: float = 0.0
+    inner_radius: float = 0.0
+    count: int = 6
+    body_radius: float = 0.0
+    density: float | None = None
+    name: str = "tube fins"
+
+    def __post_init__(self):
+        _check_tube(self, count=int(v.positive(self.count, "count")),
+                    body_radius=v.positive(self.body_radius, "body_radius"))
+
+    def _angles(self) -> tuple[float, float]:
+        """(theta1, theta2) [rad]: at a tube's tangent point from the body's axis, the
+        angle between the tube's radius and the line of centres, and its complement."""
+        t1 = float(np.arccos(self.outer_radius / (self.outer_radius + self.body_radius)))
+        return t1, 0.5 * np.pi - t1
+
+    def wetted_area_each(self) -> float:
+        """Outer surface of one tube not masked by the body [m^2] (TubeFinSetCalc)."""
+        t1, t2 = self._angles()
+        outer = self.length * 2.0 * (np.pi - t1) * self.outer_radius
+        return float(outer - self.length * 2.0 * t2 * self.body_radius)
+
+    def interstice_area_each(self) -> float:
+        """Frontal area between one tube and the body, both sides [m^2] (TubeFinSetCalc:
+        the kite of the two tangent triangles less the tube's and the body's sectors)."""
+        ro, rb = self.outer_radius, self.body_radius
+        t1, t2 = self._angles()
+        d = np.sqrt((rb + ro) ** 2 - ro ** 2)
+        return float(max(d * ro - ro * ro * t1 - rb * rb * t2, 0.0))
+
+    def mass_properties(self) -> MassProperties:
+        """The tubes as thick-walled tubes at their radial offset (numeric-only)."""
+        if self.density is None:
+            return MassProperties(0.0, self.x, np.zeros((3, 3)))
+        ro, ri, L, n = self.outer_radius, self.inner_radius, self.length, self.count
+        m_each = self.density * np.pi * (ro * ro - ri * ri) * L
+        r_axis = self.body_radius + ro
+        i_axial = n * m_each * (0.5 * (ro * ro + ri * ri) + r_axis ** 2)
+        # transverse: own moment plus the offsets, n >= 3 evenly spaced: sum sin^2 = n/2
+        i_t = n * m_each * (0.25 * (ro * ro + ri * ri) + L * L / 12.0) \
+            + m_each * r_axis ** 2 * (0.5 * n if n >= 3 else 1.0)
+        return MassProperties.axisymmetric(n * m_each, self.x + 0.5 * L, i_t, i_axial)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -8,14 +8,14 @@ import numpy as np
 from ironbark_opt.errors import InputError
 from ironbark_opt.rocket.body import BodyTube
 from ironbark_opt.rocket.fins import FinSet
-from ironbark_opt.rocket.hardware import InnerTube, LaunchLug, PointMass, RailButtons
+from ironbark_opt.rocket.hardware import InnerTube, LaunchLug, PointMass, RailButtons, TubeFins
 from ironbark_opt.rocket.mass import MassProperties, combine_properties
 from ironbark_opt.rocket.revolution import BodyOfRevolution
 
 #: gap or overlap [m] tolerated between consecutive body components
 JOINT_TOLERANCE = 1e-6
 
-_COMPONENT_TYPES = (BodyOfRevolution, FinSet, RailButtons, LaunchLug, PointMass, InnerTube)
+_COMPONENT_TYPES = (BodyOfRevolution, FinSet, RailButtons, LaunchLug, PointMass, InnerTube, TubeFins)
 
 
 class Rocket:
@@ -92,6 +92,9 @@ class Rocket:
 
     def fin_sets(self) -> list[FinSet]:
         return [c for c in self.components if isinstance(c, FinSet)]
+
+    def tube_fin_sets(self) -> list[TubeFins]:
+        return [c for c in self.components if isinstance(c, TubeFins)]
 
     def point_masses(self) -> list[PointMass]:
         return [c for c in self.components if isinstance(c, PointMass)]

@@ -281,19 +281,20 @@ def test_wind_direction_is_where_the_wind_comes_from():
     assert sim.launch.wind_from == pytest.approx(math.pi / 2)
 
 
-def test_tube_fins_are_refused_not_flown_without_their_lift(tmp_path):
-    """A tube fin set (here the simple rocket's launch lug turned into one) has neither
-    lift nor drag in either aero path: flying the rocket without it would call a stable
-    rocket unstable (OpenRocket's 'Tube fin rocket': static margin -15 cal) or fly a
-    wrong drag, so the build refuses it, naming the component."""
+def test_tube_fins_fly_empirically_and_are_not_meshed(tmp_path):
+    """A tube fin set (here the simple rocket's launch lug turned into one) becomes a
+    TubeFins component (Ribner's ring-wing lift, open-tube drag); the panel mesh cannot
+    represent it, so building a table refuses it by name."""
     from ironbark_opt.openrocket.build import geometry
+    from ironbark_opt.rocket import TubeFins
+    from panair.geometry_adapter import from_rocket
     text = _xml("A simple model rocket.ork").replace("<launchlug>", "<tubefinset>", 1) \
         .replace("</launchlug>", "</tubefinset>", 1)
-    doc = read_ork(_write(tmp_path, text, "tubefins.ork"))
-    assert any(c.kind == "tubefinset" for c in doc.rocket.components())
-    with pytest.raises(InputError, match="tube fins .* cannot be flown") as err:
-        geometry(doc)
-    assert err.value.field.endswith("tubefinset[1]")
+    rocket = geometry(read_ork(_write(tmp_path, text, "tubefins.ork")))
+    tubes = rocket.tube_fin_sets()
+    assert len(tubes) == 1 and isinstance(tubes[0], TubeFins) and tubes[0].outer_radius == 0.0035
+    with pytest.raises(InputError, match="tube fins .* cannot be meshed"):
+        from_rocket(rocket)
 
 
 def test_tube_fin_auto_radius_is_openrockets(tmp_path):
