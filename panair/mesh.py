@@ -317,9 +317,14 @@ class MeshOptions:
     strip width (measured on the Basic Finner, session 2).  The supersonic
     source solution needs narrow strips: Mach 1.6, n_span 6 -> 12 moves
     CN-alpha +2.0 % and Cm-alpha +3.3 %, and with 12 strips the default vs
-    twice-finer change is under 1.3 %.  The subsonic doublet solution is
-    best at 6 (vs PANAIR Cm-alpha within 5 % at Mach 0.4-0.8, and within 2 %
-    of its own twice-finer mesh); at 12 it drifts to -5 ... -6 %.
+    twice-finer change is under 1.3 %.  The subsonic doublet solution
+    converges on PANAIR from above as the strips narrow (Basic Finner, Mach
+    0.6, n_span 6 / 9 / 12 / 24: CN-alpha +3.4 / +2.1 / +1.4 / +0.5 %,
+    Cm-alpha +4.2 / +2.4 / +1.4 / +0.1 %; n_chord 60 instead of 30 moves
+    CN-alpha +0.1 %); 6 strips are kept for cost (within 5 % of PANAIR at
+    Mach 0.4-0.8).  (Until the sharp leading edge entered the surface-gradient
+    stencil, session 15, 6 looked best, -1.9 %, and 12 / 24 drifted to
+    -3.8 / -4.7 %: the leading-edge loss cancelled the strip-width error.)
     """
 
     n_theta: int = 32

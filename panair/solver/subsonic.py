@@ -200,7 +200,7 @@ class SubsonicSolver:
         pressure_coefficient(np.zeros((1, 3)), np.array([1.0, 0, 0]), mach, pressure_rule)
         stretch = 1.0 / self.beta_pg
         flat, cen, nrm, area = panels.geometry(stretch)
-        self._cen_t, self._nrm_t = cen, nrm
+        self._flat_t, self._cen_t, self._nrm_t = flat, cen, nrm
         n = panels.n
         plane = mirror_plane(panels) if mirror else None
         self._fold = MirrorFold(*plane) if plane is not None else None
@@ -287,7 +287,8 @@ class SubsonicSolver:
                 mu = fold.expand(mu)
         out = []
         for k in range(len(alpha)):
-            g = surface_gradient(mu[:, k], self._cen_t, self._nrm_t, self.panels.neighbours)
+            g = surface_gradient(mu[:, k], self._cen_t, self._nrm_t, self.panels.neighbours,
+                                 self._flat_t, self.panels.integrate)
             grad = g + sigma[:, k, None] * self._nrm_t
             u = grad / np.array([self.beta_pg, 1.0, 1.0])
             cp = pressure_coefficient(u, v[k], self.mach, self.pressure_rule)
