@@ -311,7 +311,15 @@ class MeshOptions:
     fully separated (:meth:`BodyGeometry.separated_transitions`) is left out of the
     solve, its drag the base pressure on its annulus (:meth:`for_mach` sets it for
     supersonic Mach numbers; subsonic tables take the zero-lift drag of such a
-    transition from the same criterion, :mod:`panair.transonic`).
+    transition from the same criterion, :mod:`panair.transonic`); sharp_le_axial :
+    the axial force of the first panel behind a sharp fin leading edge (a double
+    wedge's) is integrated (True, :meth:`for_mach`'s supersonic meshes: the edge wedge's
+    wave drag) or left out (False, subsonic): attached potential flow puts a leading-edge
+    suction there that a sharp edge cannot sustain, the flow separating at the edge instead
+    (Polhamus, NASA TN D-3767, 1966: the suction is lost, its force turning normal); with
+    it the Kestrel's table CA at 8 deg went negative at Mach 0.35 (0.071 -> -0.055) and the
+    Basic Finner's CA(4 deg) - CA(0) was -0.0136 against PANAIR's -0.0090 (without it
+    -0.0077).  Rounded and airfoil edges keep theirs (a round nose sustains suction).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -340,6 +348,7 @@ class MeshOptions:
     tip_mach: tuple = ()
     mirror_seam: bool = True
     separated_transitions: bool = False
+    sharp_le_axial: bool = False
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
@@ -348,12 +357,13 @@ class MeshOptions:
         """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
         if mach <= 1.0:
             return self
-        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions:
+        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions \
+                and self.sharp_le_axial:
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
                        supersonic_span_factor=1.0,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
-                       separated_transitions=True)
+                       separated_transitions=True, sharp_le_axial=True)
 
 
 def _chord_stations(n, clustering):
@@ -645,6 +655,9 @@ def _fin_networks(f: FinGeometry, phi, body, opt, k, length, behind: FinGeometry
                 no_force[j] = aft2
         if f.blunt_leading_edge:
             fore = mid * chord < f.bevels(chord)[0]
+            no_axial[j] |= np.concatenate([fore[::-1], fore])
+        elif f.section == "double_wedge" and not opt.sharp_le_axial:
+            fore = np.arange(n_c) == 0                          # the panel behind the sharp edge
             no_axial[j] |= np.concatenate([fore[::-1], fore])
     for sj in s:
         chord = f.chord_at(sj)
