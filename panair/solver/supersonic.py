@@ -73,7 +73,7 @@ from .pressure import GAMMA, integrate_forces, pressure_coefficient, surface_gra
 from .subsonic import PanelResult, _free_stream, _refuse_sideslip
 from .nose_correction import TangentCone
 from .supersonic_influence import panel_frames, source_potential_pair
-from .supersonic_diaphragm import diaphragm_sheets, merge_sheets
+from .supersonic_diaphragm import diaphragm_sheets, merge_sheets, tip_sheets
 from .supersonic_wake import (cut_wake_neighbours, fin_plane as _fin_plane, folded_wake_systems, sheet_geometry,
                               sheet_sides, sheet_twins, wake_rows, wake_sheets)
 
@@ -111,6 +111,12 @@ before: with it the wake-sheet faces are sided by :func:`_receiver_sides` instea
 their own ``sheets.side``, which changes the default (flag off) solution when applied
 without the flag (found in integration: andromeda, Mach 1.2, CN up to 3e-3); with
 the flag off the sheets keep their own sides."""
+TIP_DIAPHRAGM = True
+"""With THIN_WING: diaphragms outboard of the fin tips too
+(:func:`.supersonic_diaphragm.tip_sheets`), where the upper and lower flows communicate
+around a fin's side edge (the tip's lift loss of linear theory; Bonney's rectangular
+wing, tests/unit/test_panair_tip_diaphragm.py).  False: the thin-wing model of session
+12 (leading-edge diaphragms only), for comparison."""
 G1_MIN = 0.05
 """Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
 panel is (nearly) Mach-inclined and linear theory has no valid solution."""
@@ -571,6 +577,13 @@ class SupersonicSolver:
         diaphragm = diaphragm_sheets(panels, keep, fins, self.B) if THIN_WING and len(fins) else None
         self.diaphragm_cells = 0 if diaphragm is None else diaphragm.n_cells
         sheets = merge_sheets(sheets, diaphragm)
+        tips = None
+        if THIN_WING and TIP_DIAPHRAGM and len(fins):
+            body_like = ~np.isin(panels.network, fins) & keep
+            stations = np.unique(np.round(panels.corners[body_like][..., 0].ravel(), 12))
+            tips = tip_sheets(panels, keep, fins, self.B, stations)
+        self.tip_cells = 0 if tips is None else tips.n_cells
+        sheets = merge_sheets(sheets, tips)
         if sheets is not None:
             fl_w, cen_w, nrm_w, scale_w = sheet_geometry(sheets, self.B)
             x_phys = cen[:, 0] * self.B
