@@ -139,6 +139,29 @@ TIP_DIAPHRAGM = True
 around a fin's side edge (the tip's lift loss of linear theory; Bonney's rectangular
 wing, tests/unit/test_panair_tip_diaphragm.py).  False: the thin-wing model of session
 12 (leading-edge diaphragms only), for comparison."""
+TIP_DIAPHRAGM_DEFAULT = False
+"""True: the tip diaphragms (:func:`.supersonic_diaphragm.tip_sheets`, Evvard NACA
+Rep. 951) in the default model too (THIN_WING off: no leading-edge diaphragms, no
+coplanar-partner siding; the tip sheet faces receive from their own fin's side only,
+as the wake sheets).  Off by default: the tips alone over-correct.  Measured (session
+15, default -> tips on): Bonney's rectangular wing on a thin body
+(tests/unit/test_panair_tip_diaphragm.py) Mach 1.6 / 2.0, A = 2 -5.4 / -3.1 ->
+-11.4 / -6.8 %, A = 1 -9.0 / -7.5 -> -24.4 / -17.6 % (THIN_WING with the tips: +2.8 /
++2.4, +6.8 / +4.3 %); Allen's table CN-alpha fin 10 Mach 1.2 / 1.6 / 2.0 / 2.3 /
+2.96 +31.4 / +21.5 / +14.0 / +18.3 / +11.5 -> -20.8 / -7.2 / -1.8 / +7.3 / +7.0 %, CP
++0.55 / +0.17 / +0.01 / +0.20 / +0.18 -> -0.90 / -0.73 / -0.53 / -0.16 / +0.03 cal
+(fin 10's 0.8 cal bound broken at Mach 1.2), fin 12 +7.5 / +4.7 / -5.2 / +7.4 / +7.8 ->
+-8.9 / +1.8 / -6.2 / +6.7 / +7.5 %, fin 5 Mach 1.2 / 1.6 / 2.0 +35.5 / +19.0 / +7.4 ->
++23.9 / +16.3 / +6.6 %, fins 1 and 9 (pointed tips) unchanged; Basic Finner vs PANAIR
+Mach 1.6 / 2.5 CN-alpha +0.9 / -3.1 -> -1.9 / -3.8 %, Cm-alpha +2.0 / -3.0 -> -2.4 /
+-5.1 % (bound 5 %), vs range data Mach 1.293 CN-alpha -5.8 -> -11.4 % (bound 10 %),
+the table vs range Mach 1.077 -10.3 -> -13.0 % (bound 13 %); cone-cylinder, the sonic
+leading edge (Mach 1.2 / 1.25 CN 0.5948 / 0.6103, -2.5 %) and the half / full model
+(tests/unit/test_panair_mirror.py) pass.  The tips take about the same lift off as in
+the thin-wing model (fin 10 Mach 1.2: -4.3 /rad here, -4.9 there) but the default
+model starts lower: its partner leak (:func:`_fin_sides`, a coplanar partner's
+lower-face sources acting on the upper face) partly cancelled the wall outboard of
+the tip, so the tips need the partner siding of THIN_WING with them."""
 G1_MIN = 0.05
 """Minimum 1 - 2 n_X^2 (scaled coordinates) of a wetted panel: below it the
 panel is (nearly) Mach-inclined and linear theory has no valid solution."""
@@ -600,7 +623,7 @@ class SupersonicSolver:
         self.diaphragm_cells = 0 if diaphragm is None else diaphragm.n_cells
         sheets = merge_sheets(sheets, diaphragm)
         tips = None
-        if THIN_WING and TIP_DIAPHRAGM and len(fins):
+        if len(fins) and (TIP_DIAPHRAGM if THIN_WING else TIP_DIAPHRAGM_DEFAULT):
             body_like = ~np.isin(panels.network, fins) & keep
             stations = np.unique(np.round(panels.corners[body_like][..., 0].ravel(), 12))
             tips = tip_sheets(panels, keep, fins, self.B, stations)
