@@ -106,3 +106,112 @@ def merge_sheets(a: WakeSheets | None, b: WakeSheets | None) -> WakeSheets | Non
     return WakeSheets(corners=cat(a.corners, b.corners), fin=cat(a.fin, b.fin),
                       side=cat(a.side, b.side), x_root_te=a.x_root_te,
                       te=np.concatenate([a.te, b.te]))
+
+
+TIP_GROWTH = 1.5
+"""Spanwise growth ratio of the tip diaphragm's cells outboard of the tip (the first
+one the fin's tip strip wide)."""
+TIP_WIDTH = 4.0
+"""Largest width of a tip diaphragm outboard of the tip [fin spans] (the Mach cone of
+the fin is cut there; beyond, the fin's plane is a wall again)."""
+
+
+def tip_sheets(panels, keep, fins, B: float, stations=None,
+               width: float | None = None) -> WakeSheets | None:
+    """Diaphragm cells (physical coordinates) outboard of the fin tips ``fins``
+    (network ids) at Mach number sqrt(1 + B^2), or None when no fin has a tip chord
+    or a body behind it.
+
+    A fin's side edge (its tip chord, parallel to the stream) is a subsonic edge: the
+    upper and lower flows communicate around it through the part of the fin's plane
+    outboard of the tip inside the fin's Mach cone, where the flow is continuous and
+    carries no load (Evvard, NACA Report 951, 1950, the diaphragm; Jones & Cohen,
+    *High Speed Wing Theory*, 1960, sec. 6 on side edges).  That communication is the
+    lift lost to the tip: linear theory's rectangular wing CL-alpha = 4/B (1 - 1 /
+    (2 B A)) (B A >= 1; Bonney, J. Aero. Sci. 14, 1947), where a plane that is a wall
+    outboard of the tip (the fin faces' sources act on their own side only,
+    :func:`panair.solver.supersonic._fin_sides`) keeps most of Ackeret's 4/B.
+
+    The sheet lies in the fin's plane outboard of its tip station, from the Mach line
+    of the fin's leading edge that reaches the tip first (less ``MARGIN`` chordwise
+    panels) to the aft end of the kept panels, each chordwise row out to that line's
+    Mach cone (plus one cell), at most ``width`` (default TIP_WIDTH) fin spans.  Rows:
+    the fin's chordwise panel length alongside the tip chord, then the body's axial
+    stations ``stations`` (as the wake sheets; default: the same panel length);
+    spanwise cells growing by TIP_GROWTH.  Conditions: as :func:`diaphragm_sheets`
+    (continuity of the normal mass flux and of the potential).  Solved, never
+    integrated."""
+    width = TIP_WIDTH if width is None else width
+    size = float(np.ptp(panels.corners.reshape(-1, 3), axis=0).max())
+    tol = 1e-9 * size
+    x_end = float(panels.corners[keep][..., 0].max())
+    _, cen_all, _, _ = planar_corners(panels.corners)
+    xhat = np.array([1.0, 0.0, 0.0])
+    cells, fin_idx = [], []
+    for k, f in enumerate(fins):
+        on = panels.network == f
+        c0, e_t = fin_plane(cen_all[on])
+        e_s = np.cross(e_t, xhat)
+        e_s /= np.linalg.norm(e_s)
+        if c0 @ e_s < 0:
+            e_s = -e_s
+        pts = panels.corners[on].reshape(-1, 3)
+        mid = np.abs((pts - c0) @ e_t) < 1e-6 * size          # the edges in the mid-plane
+        s = np.round(pts[mid] @ e_s, 9)
+        x = pts[mid, 0]
+        st = np.unique(s)
+        if len(st) < 2:
+            continue
+        x_le = np.array([x[s == v].min() for v in st])
+        x_te_tip = float(x[s == st[-1]].max())
+        x_le_tip = float(x_le[-1])
+        if x_te_tip - x_le_tip <= tol or x_le_tip >= x_end - tol:
+            continue                                   # a pointed tip, or nothing aft
+        dx = float(np.median(np.ptp(panels.corners[on][..., 0], axis=1)))
+        ds = float(st[-1] - st[-2])
+        span = float(st[-1] - st[0])
+        # where the fin's Mach cone (from its leading edge) first reaches the tip station
+        x_start = float(np.min(x_le + B * (st[-1] - st))) - MARGIN * dx
+        # alongside the tip chord the rows follow the fin's own chordwise stations at its
+        # tip (cell corners off the fin panels' corners put collocation points near
+        # Mach lines of the cells: non-physical pressures on twice finer meshes)
+        s_all = np.round(pts @ e_s, 9)
+        x_tip = np.unique(np.round(pts[np.abs(s_all - st[-1]) < 1e-6 * size, 0], 12))
+        x_tip = x_tip[(x_tip > x_le_tip + tol) & (x_tip < x_te_tip - tol)]
+        n_ahead = max(1, int(np.ceil((x_le_tip - x_start) / dx))) if x_le_tip > x_start else 0
+        xs = np.concatenate([np.linspace(x_start, x_le_tip, n_ahead + 1) if n_ahead else [],
+                             [x_le_tip], x_tip])
+        aft = np.asarray(stations if stations is not None else np.arange(x_te_tip, x_end, dx))
+        aft = aft[(aft > x_te_tip + 0.5 * dx) & (aft < x_end - tol)]
+        xs = np.concatenate([xs, [x_te_tip], aft, [x_end]])
+        xs = np.unique(np.round(xs, 12))
+        edges = [0.0, ds]
+        while edges[-1] < width * span:
+            edges.append(edges[-1] + (edges[-1] - edges[-2]) * TIP_GROWTH)
+        edges = np.minimum(np.array(edges), width * span)
+        edges = np.unique(edges)
+        d = float(c0 @ e_t)
+        for xa, xb in zip(xs[:-1], xs[1:]):
+            reach = float(np.max(st + (xb - x_le) / B)) - st[-1]       # Mach cone at xb
+            for sa, sb in zip(edges[:-1], edges[1:]):
+                if sa > reach + tol:
+                    break
+                q = np.array([xa * xhat + (st[-1] + sa) * e_s + d * e_t,
+                              xa * xhat + (st[-1] + sb) * e_s + d * e_t,
+                              xb * xhat + (st[-1] + sb) * e_s + d * e_t,
+                              xb * xhat + (st[-1] + sa) * e_s + d * e_t])
+                cells.append(q)
+                fin_idx.append(k)
+    if not cells:
+        return None
+    cells = np.array(cells)
+    fin_idx = np.array(fin_idx, np.int64)
+    _, _, nrm, _ = planar_corners(cells)
+    e_t = np.array([fin_plane(cen_all[panels.network == fins[k]])[1] for k in fin_idx])
+    sgn = np.sign(np.einsum("nj,nj->n", nrm, e_t))
+    pos = np.where(sgn[:, None, None] > 0, cells, cells[:, ::-1])     # faces looking to +e_t
+    w = len(cells)
+    return WakeSheets(corners=np.concatenate([pos, pos[:, ::-1]]),
+                      fin=np.concatenate([fin_idx, fin_idx]),
+                      side=np.concatenate([np.ones(w), -np.ones(w)]),
+                      x_root_te=np.full(len(fins), np.inf), te=-np.ones((w, 2), np.int64))

@@ -89,6 +89,19 @@ with every attached-flow method, which points at the data or its geometry (MAPLE
 transcription, the report itself not read) or a viscous effect with no published model
 here. Not changed.
 
+Session 15, why fin 10 is +14 ... +31 % high supersonic (diagnosis, default unchanged):
+the potential CN-alpha split at Mach 0.9 / 1.2 / 1.6 / 2.0 into nose 1.98 / 2.40 / 2.84 /
+2.89 (the body alone, the same in every model), fins 3.11 / 4.30 / 3.96 / 3.79 and body
+under and behind the fins 1.50 / 3.63 / 2.88 / 2.38 /rad: the fin-body factor (fins +
+body) / (wing of the exposed panels alone, 1.98 /rad at Mach 1.2 = slender-wing pi A / 2)
+was 3.96 at Mach 1.2 against the slender-body 2.25.  Cause: the source model's fin
+plane is a wall outboard of the tip (no side-edge diaphragm), so the tip keeps most of
+the two-dimensional lift (rectangular wing, A = 1, Mach 1.6: +24 % of Bonney's value,
+tests/unit/test_panair_tip_diaphragm.py); span 0.5 cal fins lie wholly in their tip's
+Mach cone.  The thin-wing model with tip diaphragms (supersonic.THIN_WING, off by
+default, its docstring has the numbers) gives fin 10 -6.2 / +1.1 / +4.3 / +13.2 / +10.1
+% at Mach 1.2 ... 2.96 and a factor of 2.46 / 2.10 / 2.24.
+
 Independent method (subsonic, potential part only): nose 2/rad (slender-body theory)
 plus the fin pair, 2 x the isolated fin's slope (Diederich, as
 :func:`ironbark_opt.aero.barrowman.single_fin_cn_alpha`) x (K_W(B) + K_B(W)) =
