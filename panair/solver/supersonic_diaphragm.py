@@ -36,6 +36,29 @@ fin, so that part of the sheet carries nothing; the margin keeps the sheet's fro
 off the Mach line of the fin's own corner: a Mach-cone coincidence)."""
 
 
+def _fin_mid_plane(panels, cen_all, f, size: float):
+    """The mid-plane of fin network ``f``: (on, c0, e_t, e_s, pts, s, x, st, x_le) with
+    ``on`` its panels, ``c0, e_t`` its plane (:func:`.supersonic_wake.fin_plane`), ``e_s``
+    the spanwise direction (outward), ``pts`` its corners, ``s, x`` the spanwise and
+    axial coordinates of the corners in the mid-plane, ``st`` the spanwise stations and
+    ``x_le`` the leading edge at each; None for a fin of fewer than two stations."""
+    xhat = np.array([1.0, 0.0, 0.0])
+    on = panels.network == f
+    c0, e_t = fin_plane(cen_all[on])
+    e_s = np.cross(e_t, xhat)
+    e_s /= np.linalg.norm(e_s)
+    if c0 @ e_s < 0:
+        e_s = -e_s
+    pts = panels.corners[on].reshape(-1, 3)
+    mid = np.abs((pts - c0) @ e_t) < 1e-6 * size          # the edges in the mid-plane
+    s = np.round(pts[mid] @ e_s, 9)
+    x = pts[mid, 0]
+    st = np.unique(s)
+    if len(st) < 2:
+        return None
+    return on, c0, e_t, e_s, pts, s, x, st, np.array([x[s == v].min() for v in st])
+
+
 def diaphragm_sheets(panels, keep, fins, B: float) -> WakeSheets | None:
     """Diaphragm cells (physical coordinates) of the fins ``fins`` (network ids) at
     Mach number sqrt(1 + B^2), or None where no fin has a subsonic leading edge.
@@ -47,20 +70,10 @@ def diaphragm_sheets(panels, keep, fins, B: float) -> WakeSheets | None:
     xhat = np.array([1.0, 0.0, 0.0])
     cells, fin_idx = [], []
     for k, f in enumerate(fins):
-        on = panels.network == f
-        c0, e_t = fin_plane(cen_all[on])
-        e_s = np.cross(e_t, xhat)
-        e_s /= np.linalg.norm(e_s)
-        if c0 @ e_s < 0:
-            e_s = -e_s
-        pts = panels.corners[on].reshape(-1, 3)
-        mid = np.abs((pts - c0) @ e_t) < 1e-6 * size          # the edges in the mid-plane
-        s = np.round(pts[mid] @ e_s, 9)
-        x = pts[mid, 0]
-        st = np.unique(s)
-        if len(st) < 2:
+        fm = _fin_mid_plane(panels, cen_all, f, size)
+        if fm is None:
             continue
-        x_le = np.array([x[s == v].min() for v in st])
+        on, c0, e_t, e_s, pts, s, x, st, x_le = fm
         dx = float(np.median(np.ptp(panels.corners[on][..., 0], axis=1)))
         x_mach = x_le[0] + B * (st - st[0]) - MARGIN * dx
         length = x_le - x_mach
@@ -149,20 +162,10 @@ def tip_sheets(panels, keep, fins, B: float, stations=None,
     xhat = np.array([1.0, 0.0, 0.0])
     cells, fin_idx = [], []
     for k, f in enumerate(fins):
-        on = panels.network == f
-        c0, e_t = fin_plane(cen_all[on])
-        e_s = np.cross(e_t, xhat)
-        e_s /= np.linalg.norm(e_s)
-        if c0 @ e_s < 0:
-            e_s = -e_s
-        pts = panels.corners[on].reshape(-1, 3)
-        mid = np.abs((pts - c0) @ e_t) < 1e-6 * size          # the edges in the mid-plane
-        s = np.round(pts[mid] @ e_s, 9)
-        x = pts[mid, 0]
-        st = np.unique(s)
-        if len(st) < 2:
+        fm = _fin_mid_plane(panels, cen_all, f, size)
+        if fm is None:
             continue
-        x_le = np.array([x[s == v].min() for v in st])
+        on, c0, e_t, e_s, pts, s, x, st, x_le = fm
         x_te_tip = float(x[s == st[-1]].max())
         x_le_tip = float(x_le[-1])
         if x_te_tip - x_le_tip <= tol or x_le_tip >= x_end - tol:
