@@ -30,8 +30,8 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
     -------
     RocketGeometry (lengths [m]).
     """
-    for tubes in rocket.tube_fin_sets():
-        raise InputError(f"tube fins '{tubes.name}' cannot be meshed by the panel solver; fly the "
+    if rocket.tube_fin_sets():
+        raise InputError(f"tube fins '{rocket.tube_fin_sets()[0].name}' cannot be meshed by the panel solver; fly the "
                          "empirical aerodynamics (Ribner's ring-wing lift, no --table)", field="components")
     x, r = rocket.body_profile(n_profile)
     _check_no_pinch(np.asarray(x, float), np.asarray(r, float))

@@ -353,6 +353,11 @@ def friction_components(rocket, roughness: float) -> list[FrictionComponent]:
     return comps
 
 
+def _bore_roughness(roughness: float, tube) -> float:
+    """The finish [m] of an open tube's surfaces, kept below half its bore (or length)."""
+    return min(roughness, 0.5 * tube.inner_radius if tube.inner_radius > 0 else 0.5 * tube.length)
+
+
 def guide_drag(rocket, roughness: float = 60e-6) -> tuple[tuple, tuple[str, ...]]:
     """The launch guides' drag increments (:mod:`.protuberance`) of ``rocket`` (a lug's bore
     with the finish ``roughness`` [m]) and the button sizes assumed because the file gave
@@ -365,9 +370,8 @@ def guide_drag(rocket, roughness: float = 60e-6) -> tuple[tuple, tuple[str, ...]
             size, assumed = c.button_size()
             out.append(RailButtonDrag(c.stations(), name=c.name, **size))
         elif isinstance(c, LaunchLug):
-            k = min(roughness, 0.5 * c.inner_radius if c.inner_radius > 0 else 0.5 * c.length)
             out.append(LaunchLugDrag(c.x + 0.5 * c.length, c.length, c.outer_radius, c.inner_radius,
-                                     roughness=k, name=c.name))
+                                     roughness=_bore_roughness(roughness, c), name=c.name))
     return tuple(out), assumed
 
 
@@ -378,9 +382,9 @@ def tube_fin_drag(rocket, roughness: float = 60e-6) -> tuple:
     from ironbark_opt.aero.protuberance import LaunchLugDrag
     out = []
     for t in rocket.tube_fin_sets():
-        k = min(roughness, 0.5 * t.inner_radius if t.inner_radius > 0 else 0.5 * t.length)
         out.append(LaunchLugDrag(t.x + 0.5 * t.length, t.length, t.outer_radius, t.inner_radius,
-                                 roughness=k, name=t.name, wetted_area=t.wetted_area_each(),
+                                 roughness=_bore_roughness(roughness, t), name=t.name,
+                                 wetted_area=t.wetted_area_each(),
                                  extra_frontal_area=t.interstice_area_each(), count=t.count))
     return tuple(out)
 

@@ -193,8 +193,8 @@ def _children(parent: oc.OrkComponent, stage: int, pods: list) -> None:
             # OpenRocket's TubeFinSet 'auto' radius: the body's for one or two tubes,
             # else the radius at which neighbouring tubes touch, R sin(pi/n) / (1 - sin(pi/n))
             n, rb = comp.geo["count"], comp.geo["parent_radius"]
-            s = math.sin(math.pi / n) if n >= 3 else 0.0
-            comp.geo["outer_radius"] = rb if n < 3 else rb * s / (1.0 - s)
+            touch = math.sin(math.pi / n) / (1.0 - math.sin(math.pi / n)) if n >= 3 else 1.0
+            comp.geo["outer_radius"] = rb * touch
     for comp in parent.children:
         if comp.kind not in oc.PARALLEL:
             _children(comp, stage, pods)

@@ -295,9 +295,10 @@ class SubsonicSolver:
             if not np.all(np.isfinite(cp)):
                 raise SolverError(f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: "
                                   "non-finite surface pressure")
-            if np.max(np.abs(cp)) > CP_MAX:
+            cp_abs = float(np.max(np.abs(cp)))
+            if cp_abs > CP_MAX:
                 raise SolverError(f"Mach {self.mach}, alpha {np.degrees(alpha[k]):.2f} deg: "
-                                  f"singular surface pressure (|Cp| up to {np.max(np.abs(cp)):.3g} > "
+                                  f"singular surface pressure (|Cp| up to {cp_abs:.3g} > "
                                   f"{CP_MAX:g}): degenerate panels (a body or fin of almost zero "
                                   "size somewhere) make the panel equations singular")
             sel = self.panels.integrate

@@ -36,6 +36,25 @@ fin, so that part of the sheet carries nothing; the margin keeps the sheet's fro
 off the Mach line of the fin's own corner: a Mach-cone coincidence)."""
 
 
+def _two_faced(cells, fin_idx, panels, cen_all, fins) -> WakeSheets | None:
+    """The cells (corners, physical) of the fins ``fins[fin_idx]`` as a two-faced sheet
+    with no potential jump: the faces looking to +e_t of their fin's plane, then the
+    others (None without cells)."""
+    if not cells:
+        return None
+    cells = np.array(cells)
+    fin_idx = np.array(fin_idx, np.int64)
+    _, _, nrm, _ = planar_corners(cells)
+    e_t_fin = np.array([fin_plane(cen_all[panels.network == f])[1] for f in fins])
+    sgn = np.sign(np.einsum("nj,nj->n", nrm, e_t_fin[fin_idx]))
+    pos = np.where(sgn[:, None, None] > 0, cells, cells[:, ::-1])     # faces looking to +e_t
+    w = len(cells)
+    return WakeSheets(corners=np.concatenate([pos, pos[:, ::-1]]),
+                      fin=np.concatenate([fin_idx, fin_idx]),
+                      side=np.concatenate([np.ones(w), -np.ones(w)]),
+                      x_root_te=np.full(len(fins), np.inf), te=-np.ones((w, 2), np.int64))
+
+
 def _fin_mid_plane(panels, cen_all, f, size: float):
     """The mid-plane of fin network ``f``: (on, c0, e_t, e_s, pts, s, x, st, x_le) with
     ``on`` its panels, ``c0, e_t`` its plane (:func:`.supersonic_wake.fin_plane`), ``e_s``
@@ -92,19 +111,7 @@ def diaphragm_sheets(panels, keep, fins, B: float) -> WakeSheets | None:
                               xa[i + 1] * xhat + st[j] * e_s + d * e_t])
                 cells.append(q)
                 fin_idx.append(k)
-    if not cells:
-        return None
-    cells = np.array(cells)
-    fin_idx = np.array(fin_idx, np.int64)
-    _, _, nrm, _ = planar_corners(cells)
-    e_t = np.array([fin_plane(cen_all[panels.network == fins[k]])[1] for k in fin_idx])
-    sgn = np.sign(np.einsum("nj,nj->n", nrm, e_t))
-    pos = np.where(sgn[:, None, None] > 0, cells, cells[:, ::-1])     # faces looking to +e_t
-    w = len(cells)
-    return WakeSheets(corners=np.concatenate([pos, pos[:, ::-1]]),
-                      fin=np.concatenate([fin_idx, fin_idx]),
-                      side=np.concatenate([np.ones(w), -np.ones(w)]),
-                      x_root_te=np.full(len(fins), np.inf), te=-np.ones((w, 2), np.int64))
+    return _two_faced(cells, fin_idx, panels, cen_all, fins)
 
 
 def merge_sheets(a: WakeSheets | None, b: WakeSheets | None) -> WakeSheets | None:
@@ -205,16 +212,4 @@ def tip_sheets(panels, keep, fins, B: float, stations=None,
                               xb * xhat + (st[-1] + sa) * e_s + d * e_t])
                 cells.append(q)
                 fin_idx.append(k)
-    if not cells:
-        return None
-    cells = np.array(cells)
-    fin_idx = np.array(fin_idx, np.int64)
-    _, _, nrm, _ = planar_corners(cells)
-    e_t = np.array([fin_plane(cen_all[panels.network == fins[k]])[1] for k in fin_idx])
-    sgn = np.sign(np.einsum("nj,nj->n", nrm, e_t))
-    pos = np.where(sgn[:, None, None] > 0, cells, cells[:, ::-1])     # faces looking to +e_t
-    w = len(cells)
-    return WakeSheets(corners=np.concatenate([pos, pos[:, ::-1]]),
-                      fin=np.concatenate([fin_idx, fin_idx]),
-                      side=np.concatenate([np.ones(w), -np.ones(w)]),
-                      x_root_te=np.full(len(fins), np.inf), te=-np.ones((w, 2), np.int64))
+    return _two_faced(cells, fin_idx, panels, cen_all, fins)
