@@ -1,0 +1,125 @@
+"""Nose-cone pressure drag through the transonic range: the tables ``panair.rocket_table``
+builds from geometry against free-flight data for nine nose shapes of fineness ratio 3
+(Stoney, NASA TR R-100, 1961, p. 16; tests/data/aero/stoney_tr_r100, README there).
+
+Each nose sits on a 7-calibre cylinder, so the table's zero-alpha pressure CA (base drag
+is its own column) is the nose's pressure drag on its base area, the quantity of the
+report.  Printed per Mach number with the table's method there (subsonic model, the
+transonic model of :mod:`panair.transonic`, a linear-theory solution, or the
+local-inclination fallback); goal as the issue's forebody CA0: within 10 %.
+
+Measured (session 16, nothing changed for it): linear theory at Mach 1.6-2.4 is within
+-0.006 ... +0.009 of the data on the smooth pointed noses (von Karman, LV-Haack, parabolic
+K = 1, 3/4, 1/2, power 3/4), but high on the blunt-tipped ones (elliptical +0.06 ... +0.17,
+power 1/2 +0.04 ... +0.06, power 1/4): their tips are steeper than the Mach cone.  Between
+Mach 1.0 and 1.2 the transonic model carries the first supersonic solution's drag down to
+Mach 1 (the transonic area rule's sonic value), where the data of the smooth noses are a
+quarter to a third of their Mach 1.2 value (von Karman 0.027 vs 0.081, LV-Haack 0.024 vs
+0.100, parabolic K = 1 0.041 vs 0.119): the model's nose drag is 0.07-0.10 high at Mach 1.0
+and 0.03-0.06 at 1.05; on the noses with a shoulder angle (power 3/4, parabolic K = 1/2,
+3/4) the data stay near their Mach 1.2 value and the model is within 0.03.  The asserts
+bound that measured state (a regression fails); the goal is printed per row.
+Slow (nine tables, ~1 min).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+DATA = Path(__file__).parents[1] / "data"
+D = 0.1                                   # calibre of the models [m] (the data are coefficients)
+GOAL = 0.10
+#: the smooth pointed shapes (tip not steeper than a cone of the nose's fineness ratio)
+POINTED = {("von_karman", ""), ("lv_haack", ""), ("parabolic", "1.0"), ("parabolic", "0.75"),
+           ("parabolic", "0.5"), ("power", "0.75")}
+
+
+def _toml(shape: str, parameter: str) -> str:
+    param = f"shape_parameter = {parameter}\n" if parameter else ""
+    motor = DATA / "motors" / "Cesaroni_M1670.eng"
+    return f"""
+[rocket]
+name = "TR R-100 {shape} {parameter}"
+[rocket.mass_override]
+mass = 5.0
+cg_x = {5 * D}
+I_transverse = 0.5
+I_axial = 0.01
+[[component]]
+type = "nose_cone"
+shape = "{shape}"
+{param}length = {3 * D}
+radius = {D / 2}
+[[component]]
+type = "body_tube"
+length = {7 * D}
+radius = {D / 2}
+[motor]
+file = "{motor}"
+nozzle_x = {10 * D}
+[launch]
+rail_length = 3.0
+"""
+
+
+def _method(md, m) -> str:
+    if m in md.get("mach_local_inclination", []):
+        return "local inclination"
+    if m in md.get("mach_bridged", []):
+        return "transonic model"
+    if m < 1.0:
+        return "subsonic model"          # the table's subsonic zero-lift drag (panair.transonic)
+    return "solved" if m in md.get("mach_solved_builtin", []) else "?"
+
+
+@pytest.fixture(scope="module")
+def comparison(tmp_path_factory):
+    from ironbark_opt.vehicle import load_rocket_geometry
+    from panair.rocket_table import rocket_table
+    ref = pd.read_csv(DATA / "aero" / "stoney_tr_r100" / "nose_pressure_drag.csv", comment="#",
+                      dtype={"shape_parameter": str}).fillna("")
+    tmp = tmp_path_factory.mktemp("tr_r100")
+    rows = []
+    for (shape, p), grp in ref.groupby(["shape", "shape_parameter"], sort=False):
+        path = tmp / f"{shape}_{p}.toml"
+        path.write_text(_toml(shape, p))
+        rk, spec = load_rocket_geometry(path)
+        mach = np.array(sorted(m for m in grp["mach"] if m <= 3.0), float)
+        t = rocket_table(rk, spec, mach=np.concatenate([[0.3, 0.6], mach]),
+                         alpha_deg=np.array([0.0, 2.0]), workers=2)
+        for m, cd in zip(grp["mach"], grp["cd_pressure"]):
+            if m > 3.0:
+                continue
+            rows.append((shape, p, float(m), float(cd),
+                         float(t.evaluate("CA_pressure", m, 0.0)), _method(t.metadata, float(m))))
+    return pd.DataFrame(rows, columns=["shape", "p", "mach", "measured", "ours", "method"])
+
+
+@pytest.mark.slow
+def test_nose_pressure_drag_vs_tr_r100(comparison):
+    print("\nnose (fineness 3)      Mach  TR R-100   ours    diff    err%   method")
+    for r in comparison.itertuples():
+        err = (r.ours / r.measured - 1) if r.measured > 0 else float("nan")
+        flag = "" if abs(err) <= GOAL else "  NOT MET"
+        print(f"{r.shape:10s} {r.p:5s}  {r.mach:7.3f}  {r.measured:7.3f}  {r.ours:7.4f}  "
+              f"{r.ours - r.measured:+7.4f}  {100 * err:+6.1f}  {r.method}{flag}")
+    pointed = comparison[[(s, p) in POINTED for s, p in zip(comparison["shape"], comparison["p"])]]
+    sup = pointed[(pointed["mach"] >= 1.6) & (pointed["method"] == "solved")]
+    son = pointed[(pointed["mach"] >= 1.0) & (pointed["mach"] <= 1.1)]
+    print(f"pointed noses, linear theory Mach >= 1.6: diff {sup['ours'].sub(sup['measured']).min():+.4f}"
+          f" ... {sup['ours'].sub(sup['measured']).max():+.4f} ({len(sup)} points)")
+    print(f"pointed noses, Mach 1.0-1.1 (transonic model): diff "
+          f"{son['ours'].sub(son['measured']).min():+.4f} ... {son['ours'].sub(son['measured']).max():+.4f}")
+    assert len(sup) >= 8
+    # measured state (module docstring): linear theory on the pointed noses within 0.025 of the
+    # data above Mach 1.6; the transonic model never below the data by more than 0.03 and at
+    # most 0.12 above it at Mach 1.0-1.1
+    assert np.all(np.abs(sup["ours"] - sup["measured"]) < 0.025)
+    assert np.all(son["ours"] - son["measured"] > -0.03)
+    assert np.all(son["ours"] - son["measured"] < 0.12)
+    # below the drag rise (measured 0) the smooth noses have (almost) no pressure drag
+    quiet = pointed[(pointed["measured"] == 0.0)]
+    assert np.all(quiet["ours"] < 0.02)
