@@ -43,6 +43,26 @@ def default_mach_grid(peak_mach: float | None = None) -> np.ndarray:
     return np.array(grid)
 
 
+#: Largest angle [rad] between a nose's profile and the body at its shoulder for the nose
+#: to count as ogival (tangent at the shoulder; :mod:`panair.transonic`, item 4)
+OGIVAL_JOINT_MAX = math.radians(1.0)
+
+
+def ogival_nose(rocket):
+    """``(x_end [m], tau [-], area_ratio [-])`` of the rocket's nose when it meets the
+    body tangentially (joint angle below :data:`OGIVAL_JOINT_MAX`: tangent ogive, Haack /
+    von Karman, parabolic K = 1, elliptical), else None: its end aft of the tip, base
+    diameter / length and base area / reference area (McCoy's transonic head drag,
+    :mod:`panair.transonic` item 4)."""
+    from ironbark_opt.aero.empirical_drag import joint_half_angle
+    from ironbark_opt.rocket.nose import NoseCone
+    front = min(rocket.body_components(), key=lambda c: c.x)
+    if not isinstance(front, NoseCone) or joint_half_angle(front) > OGIVAL_JOINT_MAX:
+        return None
+    return (float(front.x + front.length), 2.0 * front.radius / front.length,
+            front.radius ** 2 / rocket.reference_radius() ** 2)
+
+
 def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float = 1.0,
                  workers: int = 2, progress: bool = False, use_panair: bool = False,
                  checkpoint_dir=None, extra_metadata: dict | None = None,
@@ -93,4 +113,5 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
                        options=MeshOptions(refine=refine), workers=workers, progress=progress,
                        use_panair=use_panair,
                        subsonic_pressure=lambda m: separated_pressure_ca(rocket, m, streamlined_edges=False),
-                       checkpoint_dir=checkpoint_dir, extra_metadata=extra_metadata, pool=pool)
+                       checkpoint_dir=checkpoint_dir, extra_metadata=extra_metadata, pool=pool,
+                       nose=ogival_nose(rocket))

@@ -343,10 +343,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     # one mesh per regime: supersonic Mach numbers get finer fin strips
     # (MeshOptions.for_mach; the same mesh when the options say so)
     opt = options or MeshOptions()
-    opt_sup = opt.for_mach(MACH_SUPERSONIC_MIN)
-    if len(sup):
-        # the nose tip subinclined at the sweep's largest Mach (panair.mesh._sharpened_tip)
-        opt_sup = replace(opt_sup, tip_mach=tuple(float(m) for m in sup))
+    opt_sup = supersonic_mesh_options(opt, sup)
     nets = mesh_rocket(geometry, symmetric=symmetric, options=opt)
     nets_sup = nets if opt_sup == opt else mesh_rocket(geometry, symmetric=symmetric,
                                                        options=opt_sup)
@@ -501,6 +498,16 @@ def _extend_alpha(values, alpha, alpha_ext, kind):
     return np.hstack([values, last * (_jorgensen_potential(alpha_ext) / g0)[None, :]])
 
 
+def supersonic_mesh_options(options: MeshOptions | None, mach_sup) -> MeshOptions:
+    """The mesh options of a sweep's supersonic Mach numbers ``mach_sup`` [-]: finer fin
+    strips (:meth:`MeshOptions.for_mach`) and the nose tip subinclined at the largest of
+    them (``tip_mach``, :func:`panair.mesh._sharpened_tip`)."""
+    opt_sup = (options or MeshOptions()).for_mach(MACH_SUPERSONIC_MIN)
+    if len(mach_sup):
+        opt_sup = replace(opt_sup, tip_mach=tuple(float(m) for m in mach_sup))
+    return opt_sup
+
+
 def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float, xref: float,
                 friction=None, base_drag=None, symmetric: bool = True,
                 options: MeshOptions | None = None, workers: int = 2, progress: bool = True,
@@ -508,7 +515,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                 extra_metadata: dict | None = None, executor=None,
                 crossflow_k: float | None = None, subsonic_pressure=None,
                 friction_in_table: bool = False, alpha_extend_deg=ALPHA_EXTEND_DEG,
-                checkpoint_dir=None, pool=None):
+                checkpoint_dir=None, pool=None, nose=None):
     """Sweep -> AeroTable with the transonic, separated-flow, viscous and base parts.
 
     Parameters
@@ -532,6 +539,11 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
         Zero-lift pressure drag below the critical Mach number (separated flow and
         edges, e.g. :func:`ironbark_opt.aero.empirical_drag.separated_pressure_ca`);
         None: 0 (d'Alembert).  See :mod:`panair.transonic`.
+    nose : (float, float, float), optional
+        ``(x_end [m], tau [-], area_ratio [-])`` of an ogival nose (meeting the body
+        tangentially): its end, base diameter / length and base area / ``sref``; its
+        transonic drag is then McCoy's (:mod:`panair.transonic`, item 4).  None: the
+        nose follows the area-rule anchor with the rest.
     friction_in_table : bool
         Add friction to ``CA`` (a table for a tool that has no friction model).
     alpha_extend_deg : sequence of float [deg]
@@ -552,7 +564,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     """
     from ironbark_opt import __version__
     from ironbark_opt.aero.table import AeroTable
-    from .transonic import body_critical_mach, fin_critical_mach, zero_lift_pressure
+    from .transonic import (body_critical_mach, fin_critical_mach, nose_supersonic_share,
+                            nose_transonic, zero_lift_pressure)
     if crossflow_k is not None and not (math.isfinite(crossflow_k) and crossflow_k >= 0):
         raise InputError(f"crossflow_k must be >= 0, got {crossflow_k}", field="crossflow_k")
     alpha = np.asarray(alpha, float)
@@ -597,7 +610,22 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     # each fin set rises from its own critical Mach number on its own exposed planform
     lock_sets = [(m_i, int(f.count) * f.span * float(np.mean(f.chord_at(np.linspace(0, 1, 65)))) / sref)
                  for m_i, f in zip(m_cr_fins, geometry.fins)]
-    p0 = zero_lift_pressure(mach, m_cr, sub_fn, m_sup, p_sup, lock_sets=lock_sets)
+    # an ogival nose's own transonic drag (McCoy) in place of its share of the sonic anchor
+    nose_model, nose_meta = None, None
+    if nose is not None and len(m_sup) and np.any((mach > m_cr) & (mach < m_sup[0])):
+        x_end, tau, area_ratio = nose
+        grid_sup = mach[mach >= MACH_SUPERSONIC_MIN] if not anchor_solved else m_sup
+        share = nose_supersonic_share(geometry.body, float(m_sup[0]), x_end, sref=sref,
+                                      options=supersonic_mesh_options(options, grid_sup),
+                                      pressure_rule=pressure_rule)
+        if share is not None:
+            m_cr_nose, rise = nose_transonic(tau, area_ratio)
+            nose_model = (rise, share)
+            m_cr = min(m_cr, m_cr_nose)
+            nose_meta = {"model": "McCoy 1981 (MC DRAG) transonic head drag", "tau": tau,
+                         "mach_critical": m_cr_nose, "sonic_ca": float(rise(1.0)),
+                         "supersonic_share_ca": share, "supersonic_share_mach": float(m_sup[0])}
+    p0 = zero_lift_pressure(mach, m_cr, sub_fn, m_sup, p_sup, lock_sets=lock_sets, nose=nose_model)
     ca_p = p0[:, None] + d_ca
     n_a = len(alpha)
     ones = np.ones((1, n_a))
@@ -662,6 +690,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                                                      geometry.body.separated_transitions()],
             "mach_critical": m_cr, "mach_critical_body": m_cr_body,
             "mach_critical_fins": m_cr_fins, "mach_sonic_anchor_solved": anchor_solved,
+            "nose_transonic": nose_meta,
             "friction_reynolds": ("sea-level ISA unit Reynolds number at each Mach (in CA)"
                                   if friction_in_table else
                                   "not in CA: the flight adds friction at its own Reynolds "

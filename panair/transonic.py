@@ -43,8 +43,25 @@ across the gap by :func:`panair.bridge.transonic_bridge`):
    of Mach number, so the supersonic linear-theory value carries down to
    Mach 1.  The fairing is the monotone cubic Hermite interpolant of
    Fritsch & Carlson (1980), as :mod:`panair.bridge`.
+4. **An ogival nose** (one meeting the body tangentially: tangent ogive,
+   Haack / von Karman, parabolic K = 1, elliptical) does not carry its
+   supersonic wave drag down to Mach 1: free-flight data of fineness-3 noses
+   (Stoney, NASA TR R-100, 1961, p. 16; tests/data/aero/stoney_tr_r100)
+   measure a quarter to a third of their Mach 1.2 drag at Mach 1 (von Karman
+   0.027 / 0.081, LV-Haack 0.024 / 0.100, parabolic K = 1 0.041 / 0.119).  Its
+   drag rises by McCoy's transonic head-drag equation (MC DRAG, BRL
+   ARBRL-TR-02293, 1981: critical Mach number (1 + 0.552 tau^(4/5))^(-1/2),
+   0.368 tau^(9/5) at Mach 1, tau = base diameter / length;
+   :func:`nose_transonic`), and in the sonic anchor its share of the first
+   supersonic solution (:func:`nose_supersonic_share`) is replaced by that
+   sonic value; the fairing then carries it up to the supersonic solution.
+   Noses with a shoulder angle (cones, power series, parabolic K < 1, secant
+   ogives) keep the area-rule anchor: their data stay near the Mach 1.2 value
+   at Mach 1 (power 3/4, parabolic K = 1/2 and 3/4: 0.7-0.9 of it), and
+   McCoy's equation, fitted to ogive-headed projectiles, gives a 10 deg cone a
+   third of Hoerner's sonic cone drag sin(half-angle).
 
-Numeric-only.
+Numeric-only (:func:`nose_supersonic_share` runs the supersonic solver).
 """
 from __future__ import annotations
 
@@ -53,14 +70,16 @@ from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
 from ironbark_opt.aero.compressibility import (LOCK_MACH_MAX, LOCK_OFFSET, MACH_CR_MAX,
-                                                korn_critical_mach, lock_rise)
+                                                korn_critical_mach, lock_rise,
+                                                mccoy_head_critical_mach,
+                                                mccoy_head_drag_transonic)
 
 GAMMA = 1.4
 #: Mach number of the sonic anchor of the fairing [-]
 MACH_SONIC = 1.0
 
 __all__ = ["cp_sonic", "karman_tsien", "body_critical_mach", "fin_critical_mach",
-           "zero_lift_pressure", "LOCK_OFFSET"]
+           "zero_lift_pressure", "nose_transonic", "nose_supersonic_share", "LOCK_OFFSET"]
 
 
 def cp_sonic(mach):
@@ -114,8 +133,46 @@ def fin_critical_mach(fin) -> float:
                               float(fin.le_at(1.0)), fin.span, fin.thickness)
 
 
+def nose_transonic(tau: float, area_ratio: float):
+    """(critical Mach number [-], ``rise(mach)`` [-]) of an ogival nose (item 4 of the
+    module docstring): McCoy's transonic head drag on the nose's base area times
+    ``area_ratio`` [-] (nose base area / reference area), held at its sonic value
+    above Mach 1; ``tau`` [-] = base diameter / nose length."""
+    return (mccoy_head_critical_mach(tau),
+            lambda m: mccoy_head_drag_transonic(np.minimum(np.asarray(m, float), MACH_SONIC),
+                                                tau) * float(area_ratio))
+
+
+def nose_supersonic_share(body, mach: float, x_end: float, *, sref: float, options=None,
+                          pressure_rule: str = "second-order"):
+    """Zero-lift pressure CA [-] (on ``sref`` [m^2]) of the body's panels ahead of
+    ``x_end`` [m] (the nose) in the built-in supersonic solution at ``mach`` [-] of the
+    body alone (``body``: :class:`panair.mesh.BodyGeometry`), meshed with ``options``
+    (the sweep's supersonic options, :func:`panair.sweep.supersonic_mesh_options`); None
+    where linear theory has no solution there.  Supersonic flow at zero incidence: nothing aft of the nose
+    (fins, boattails) acts on it, so the body alone gives the full configuration's
+    nose share."""
+    from ironbark_opt.errors import SolverError
+
+    from .mesh import MeshOptions, RocketGeometry, mesh_rocket
+    from .solver import build_panels, make_solver
+    from .solver.pressure import integrate_forces
+    opt = options or MeshOptions().for_mach(mach)
+    panels = build_panels(mesh_rocket(RocketGeometry(body), symmetric=True, options=opt),
+                          symmetric=True)
+    try:
+        res = make_solver(panels, mach, sref=sref, lref=1.0, xref=0.0,
+                          pressure_rule=pressure_rule).solve(0.0)[0]
+    except SolverError:
+        return None
+    _, c, n, a = panels.geometry()
+    sel = c[:, 0] < x_end
+    return float(integrate_forces(res.cp[sel], c[sel], n[sel], a[sel], sref=sref, lref=1.0,
+                                  xref=0.0, symmetric=True)["CA"])
+
+
 def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
-                       lock_sets=()):
+                       lock_sets=(), nose=None):
     """Zero-lift pressure CA P(M) [-] at ``mach_out`` [-] (see module docstring).
 
     Parameters
@@ -138,6 +195,12 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
         number).  Between the critical Mach number and drag divergence the rise is
         the sum of ``20 (M - M_cr,i)^4 * ratio_i`` (Lock; Mason ch. 7), above it the
         monotone fairing to the sonic value.
+    nose : (callable, float), optional
+        An ogival nose's own transonic drag ``rise(mach)`` [-] (on the reference area,
+        0 below its critical Mach number; :func:`nose_transonic`) and its share [-] of
+        the first supersonic solution's zero-lift pressure drag.  The nose then rises
+        by ``rise`` up to Mach 1 and its sonic value is ``rise(1)`` instead of its
+        first supersonic value (module docstring, item 4).
 
     Returns
     -------
@@ -162,8 +225,12 @@ def zero_lift_pressure(mach_out, mach_cr: float, subsonic, mach_sup, p_sup,
     m_lock = mach_cr + step * np.arange(1, int(np.ceil((LOCK_MACH_MAX - mach_cr) / step)) + 1)
     m_lock = m_lock[m_lock <= LOCK_MACH_MAX + 1e-12]
     rise = sum((lock_rise(m_lock, m_i, a_i) for m_i, a_i in lock_sets), 0.0 * m_lock)
-    p_lock = np.asarray(subsonic(m_lock), float) + rise
     p_sonic = float(p_sup[0])
+    if nose is not None:
+        nose_rise, nose_share = nose
+        rise = rise + np.asarray(nose_rise(m_lock), float)
+        p_sonic += float(nose_rise(MACH_SONIC)) - float(nose_share)
+    p_lock = np.asarray(subsonic(m_lock), float) + rise
     below = p_lock < p_sonic
     below[:min(4, len(below))] = True                 # always through M_dd = M_cr + 0.108
     m_lock, p_lock = m_lock[below], p_lock[below]

@@ -49,3 +49,23 @@ def lock_rise(mach, mach_cr: float, area_ratio: float = 1.0):
     ``area_ratio`` [-] times the reference area."""
     m = np.asarray(mach, dtype=float)
     return 20.0 * np.maximum(m - mach_cr, 0.0) ** 4 * float(area_ratio)
+
+
+def mccoy_head_critical_mach(tau: float) -> float:
+    """Critical Mach number [-] of an ogival nose of thickness ratio ``tau`` [-]
+    (base diameter / length): ``(1 + 0.552 tau^(4/5))^(-1/2)`` (McCoy, "MC DRAG - a
+    computer program for estimating the drag coefficients of projectiles", BRL
+    ARBRL-TR-02293, 1981; also *Modern Exterior Ballistics*, 1999, ch. 4), the Mach
+    number where :func:`mccoy_head_drag_transonic` is zero."""
+    return float((1.0 + 0.552 * float(tau) ** 0.8) ** -0.5)
+
+
+def mccoy_head_drag_transonic(mach, tau: float):
+    """Transonic pressure drag of an ogival nose [-] on its base area, at ``mach`` [-]
+    up to 1: ``0.368 tau^(9/5) + 1.6 tau (M^2 - 1) / ((gamma + 1) M^2)``, 0 below the
+    critical Mach number (McCoy 1981, MC DRAG, the transonic head-drag equation, a
+    transonic-similarity form fitted by McCoy to ogive-headed projectiles; gamma =
+    1.4).  ``tau`` [-] is the base diameter over the nose length; numeric-only."""
+    m = np.maximum(np.asarray(mach, dtype=float), 1e-3)
+    t = float(tau)
+    return np.maximum(0.368 * t ** 1.8 + 1.6 * t * (m * m - 1.0) / (2.4 * m * m), 0.0)

@@ -79,7 +79,9 @@ def leading_edge_cd(mach, kind: str):
     return 0.85 * stagnation_ratio(m) if kind == "square" else rounded_le(m)
 
 
-def _joint_half_angle(comp) -> float:
+def joint_half_angle(comp) -> float:
+    """Angle [rad] between a nose (or transition) profile's last segment and the axis:
+    the half-angle of its joint with the next part (2001-point profile)."""
     x, r = comp.profile(2001)
     return float(np.arctan(abs(r[-1] - r[-2]) / (x[-1] - x[-2])))
 
@@ -108,7 +110,7 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.nd
         ca += 0.85 * q * np.pi * r_front ** 2 / a_ref
     for comp in rocket.body_components():
         if isinstance(comp, NoseCone):
-            phi = _joint_half_angle(comp)
+            phi = joint_half_angle(comp)
             sub = 0.8 * np.sin(phi) ** 2 * comp.radius ** 2 * np.pi / a_ref
             ca += np.where(m < 1.0, sub, sub * q)
         elif isinstance(comp, Transition) and comp.aft_radius < comp.fore_radius:

@@ -7,7 +7,8 @@ from scipy.optimize import brentq
 
 from panair.mesh import FinGeometry
 from panair.transonic import (LOCK_OFFSET, MACH_CR_MAX, body_critical_mach, cp_sonic,
-                              fin_critical_mach, karman_tsien, zero_lift_pressure)
+                              fin_critical_mach, karman_tsien, nose_transonic,
+                              zero_lift_pressure)
 
 
 def test_sonic_pressure_coefficient_limits():
@@ -83,3 +84,41 @@ def test_each_fin_set_rises_from_its_own_critical_mach():
     assert p[1] < 20 * 0.38 ** 4 * 0.11 * 1.05 + 1e-12          # on the Lock points' fairing
     old = zero_lift_pressure([0.6], 0.42, sub, m_sup, p_sup, lock_sets=[(0.42, 6.11)])
     assert old[0] > 20 * p[0]                                     # what one shared M_cr gave
+
+
+def test_mccoy_nose_rise_zero_at_its_critical_mach_and_sonic_value():
+    """McCoy's transonic head drag (MC DRAG 1981): its critical Mach number
+    (1 + 0.552 tau^0.8)^-1/2 is where 0.368 tau^1.8 + 1.6 tau (M^2 - 1) / (2.4 M^2)
+    vanishes (0.552 = 0.368 x 2.4 / 1.6: the two published formulas agree), the sonic
+    value is 0.368 tau^1.8, held above Mach 1, on the given area ratio."""
+    for tau in (0.1, 0.2, 1 / 3, 0.5):
+        m_cr, rise = nose_transonic(tau, 0.8)
+        assert brentq(lambda m: 0.368 * tau ** 1.8 + 1.6 * tau * (m * m - 1) / (2.4 * m * m),
+                      0.5, 1.0) == pytest.approx(m_cr, abs=1e-9)
+        assert rise(m_cr - 0.01) == 0.0 and rise(m_cr + 0.01) > 0.0
+        assert rise(1.0) == pytest.approx(0.8 * 0.368 * tau ** 1.8, rel=1e-12)
+        assert rise(1.3) == rise(1.0)
+        assert np.all(np.diff(rise(np.linspace(m_cr, 1.0, 50))) > 0)
+    # fineness 3: the drag rise from Mach 0.90 (NASA TR R-100 data: 0.90-0.95), 0.051 at Mach 1
+    m_cr, rise = nose_transonic(1 / 3, 1.0)
+    assert m_cr == pytest.approx(0.902, abs=1e-3) and rise(1.0) == pytest.approx(0.0509, abs=1e-4)
+
+
+def test_ogival_nose_replaces_its_share_of_the_sonic_anchor():
+    """With an ogival nose the anchor at Mach 1 is the first supersonic solution minus the
+    nose's share of it plus the nose's own sonic drag; the supersonic rows are untouched
+    and the rise stays monotone."""
+    sub = lambda m: 0.0 * np.asarray(m, float)
+    m_sup, p_sup = np.array([1.2, 1.5, 2.0]), np.array([0.30, 0.26, 0.21])
+    m_cr, rise = nose_transonic(0.2, 1.0)
+    share = 0.05
+    m = np.linspace(0.5, 2.0, 301)
+    p = zero_lift_pressure(m, m_cr, sub, m_sup, p_sup, nose=(rise, share))
+    assert p[np.argmin(np.abs(m - 1.0))] == pytest.approx(0.30 - share + float(rise(1.0)), abs=1e-9)
+    assert zero_lift_pressure(m_sup, m_cr, sub, m_sup, p_sup, nose=(rise, share)) == pytest.approx(p_sup)
+    assert np.all(np.diff(p[(m > m_cr) & (m <= 1.2)]) >= -1e-12)
+    assert np.all(p[m <= m_cr] == 0.0)
+    # below Mach 1 the nose's rise is in (a rocket peaking at Mach 0.97 sees it)
+    assert p[np.argmin(np.abs(m - 0.97))] >= float(rise(0.97)) - 1e-9
+    without = zero_lift_pressure(m, m_cr, sub, m_sup, p_sup)
+    assert without[np.argmin(np.abs(m - 1.0))] == pytest.approx(0.30, abs=1e-9)

@@ -22,6 +22,10 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
   three 12.4 mm x 14.2 mm buttons, APEX none): FT1 -0.56 -> -2.08 % (OpenRocket +1.89 %:
   the FT1 goal is NOT MET any more), FT2 +2.53 -> +1.10 %, APEX +5.89 % unchanged;
   empirical path FT1 +1.17 -> -0.45 %, FT2 +6.41 -> +4.81 %.
+- Session 16, McCoy's transonic drag of ogival noses in place of their share of the sonic
+  anchor (panair.transonic item 4; NASA TR R-100 nose data): FT1 -2.13 -> -2.09 %, FT2
+  +0.64 -> +0.72 %, APEX +5.86 -> +6.26 % (less nose drag at Mach 0.9-1.2: APEX's boost
+  runs through it).
 
 Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
 FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).

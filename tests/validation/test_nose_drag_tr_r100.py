@@ -8,17 +8,22 @@ report.  Printed per Mach number with the table's method there (subsonic model, 
 transonic model of :mod:`panair.transonic`, a linear-theory solution, or the
 local-inclination fallback); goal as the issue's forebody CA0: within 10 %.
 
-Measured (session 16, nothing changed for it): linear theory at Mach 1.6-2.4 is within
--0.006 ... +0.009 of the data on the smooth pointed noses (von Karman, LV-Haack, parabolic
-K = 1, 3/4, 1/2, power 3/4), but high on the blunt-tipped ones (elliptical +0.06 ... +0.17,
-power 1/2 +0.04 ... +0.06, power 1/4): their tips are steeper than the Mach cone.  Between
-Mach 1.0 and 1.2 the transonic model carries the first supersonic solution's drag down to
-Mach 1 (the transonic area rule's sonic value), where the data of the smooth noses are a
-quarter to a third of their Mach 1.2 value (von Karman 0.027 vs 0.081, LV-Haack 0.024 vs
-0.100, parabolic K = 1 0.041 vs 0.119): the model's nose drag is 0.07-0.10 high at Mach 1.0
-and 0.03-0.06 at 1.05; on the noses with a shoulder angle (power 3/4, parabolic K = 1/2,
-3/4) the data stay near their Mach 1.2 value and the model is within 0.03.  The asserts
-bound that measured state (a regression fails); the goal is printed per row.
+Measured (session 16): linear theory at Mach 1.6-2.4 is within -0.008 ... +0.022 of the
+data on the smooth pointed noses (von Karman, LV-Haack, parabolic K = 1, 3/4, 1/2, power
+3/4), but high on the blunt-tipped ones (elliptical +0.06 ... +0.17, power 1/2 +0.04 ...
++0.06, power 1/4 +0.08 ... +0.20): their tips are steeper than the Mach cone.  Between
+Mach 1.0 and 1.2 the transonic model used to carry the first supersonic solution's drag
+down to Mach 1 (the transonic area rule's sonic value), where the data of the noses
+meeting the body tangentially are a quarter to a third of their Mach 1.2 value: at Mach
+1.0 / 1.05 / 1.1 von Karman +0.074 / +0.046 / +0.031, LV-Haack +0.101 / +0.059 / +0.041,
+parabolic K = 1 +0.080 / +0.029 / +0.012.  With McCoy's transonic head drag for those
+noses (panair.transonic, item 4): von Karman +0.024 / +0.012 / +0.011, LV-Haack +0.027 /
++0.007 / +0.010, parabolic K = 1 +0.010 / -0.018 / -0.013; McCoy's drag rise starts at
+Mach 0.90 for fineness 3 (data: 0.90-0.95), so at Mach 0.95 +0.017 / +0.017 / +0.027.  The
+noses with a shoulder angle (power 3/4, parabolic K = 1/2, 3/4) keep the area-rule anchor:
+their data stay near the Mach 1.2 value and the model is within -0.024 ... +0.029.  The
+asserts bound that measured state (a regression, or the area-rule anchor back on the
+tangent noses, fails); the goal is printed per row.
 Slow (nine tables, ~1 min).
 """
 from __future__ import annotations
@@ -115,11 +120,12 @@ def test_nose_pressure_drag_vs_tr_r100(comparison):
           f"{son['ours'].sub(son['measured']).min():+.4f} ... {son['ours'].sub(son['measured']).max():+.4f}")
     assert len(sup) >= 8
     # measured state (module docstring): linear theory on the pointed noses within 0.025 of the
-    # data above Mach 1.6; the transonic model never below the data by more than 0.03 and at
-    # most 0.12 above it at Mach 1.0-1.1
+    # data above Mach 1.6; the transonic model within -0.03 ... +0.035 of the data at Mach
+    # 1.0-1.1 (the area-rule anchor on the tangent noses: up to +0.10)
     assert np.all(np.abs(sup["ours"] - sup["measured"]) < 0.025)
     assert np.all(son["ours"] - son["measured"] > -0.03)
-    assert np.all(son["ours"] - son["measured"] < 0.12)
-    # below the drag rise (measured 0) the smooth noses have (almost) no pressure drag
+    assert np.all(son["ours"] - son["measured"] < 0.035)
+    # below the drag rise (measured 0) the smooth noses have little pressure drag (McCoy's
+    # rise starts at Mach 0.90 for fineness 3, the data at 0.90-0.95)
     quiet = pointed[(pointed["measured"] == 0.0)]
-    assert np.all(quiet["ours"] < 0.02)
+    assert np.all(quiet["ours"] < 0.03)
