@@ -31,7 +31,7 @@ def ork_summary(doc, config: str | None = None) -> dict:
     for s in doc.simulations:
         sims.append({"name": s.name, "config_id": s.config_id, **s.summary,
                      "rail_length_m": s.launch.rail_length,
-                     "has_data": s.has_data()})
+                     "has_data": s.has_data(), "status": s.status})
     out = {"file": str(doc.path), "version": doc.version, "creator": doc.creator,
            "rocket": doc.name, "length_m": doc.length(), "dry_mass_kg": dry.mass,
            "dry_cg_m": dry.cg_x, "dry_inertia_transverse_kgm2": dry.I_transverse,

@@ -174,7 +174,22 @@ def axial_position(el: Element, length: float, parent_x: float, parent_len: floa
 
 
 def _radius(el, tag, minimum=0.0):
-    return el.number(tag, None, auto=True, minimum=minimum)
+    """A radius, or None when ``auto``: OpenRocket (``DoubleSetter`` with the ``auto``
+    special string) sets the number written after ``auto`` and then switches the radius to
+    automatic, so the component takes it from its neighbour (or parent) whenever it is read;
+    the number is the value cached when the file was saved, stale once a neighbour changed
+    (:func:`auto_cache`)."""
+    return None if _is_auto(el, tag) else el.number(tag, None, auto=True, minimum=minimum)
+
+
+def _is_auto(el, tag) -> bool:
+    raw = el.text(tag)
+    return raw is not None and raw.strip().lower().startswith("auto")
+
+
+def auto_cache(el, tag):
+    """The number saved after ``auto`` in ``tag`` (``auto 0.0125``), or None."""
+    return el.number(tag, None, auto=True) if _is_auto(el, tag) else None
 
 
 def _thickness(el, tag="thickness"):

@@ -73,6 +73,9 @@ class OrkSimulation:
     launch_into_wind: bool
     summary: dict = field(default_factory=dict)
     branch_elements: dict = field(default_factory=dict, repr=False)
+    #: OpenRocket's ``status`` when saved: "uptodate" (flown with the design as saved),
+    #: "outdated" (the design changed since), "cantrun", "notsimulated", ...; "" if absent
+    status: str = ""
     _frames: dict = field(default_factory=dict, repr=False)
 
     @property
@@ -192,7 +195,7 @@ def simulations(root: Element) -> list[OrkSimulation]:
         cond = s.require("conditions")
         launch, into_wind = _launch(cond)
         sim = OrkSimulation(s.text("name") or "simulation", cond.text("configid") or "",
-                            launch, into_wind)
+                            launch, into_wind, status=(s.attr("status") or "").lower())
         fd = s.child("flightdata")
         if fd is not None:
             for key, name in _SUMMARY.items():

@@ -200,30 +200,114 @@ def _children(parent: oc.OrkComponent, stage: int, pods: list) -> None:
             _children(comp, stage, pods)
 
 
+#: OpenRocket's radius of an automatic body radius with nothing to take it from [m]
+#: (``SymmetricComponent.DEFAULT_RADIUS``)
+DEFAULT_RADIUS = 0.025
+
+
+class _AutoRadii:
+    """OpenRocket's automatic body radii along the body (all stages, nose to tail).
+
+    The rules of ``BodyTube.getAutoOuterRadius``, ``Transition.getAutoForeRadius`` /
+    ``getAutoAftRadius`` and their ``getFrontAutoRadius`` / ``getRearAutoRadius`` /
+    ``usesPreviousCompAutomatic`` / ``usesNextCompAutomatic`` (OpenRocket
+    ``core/.../rocketcomponent``): an automatic body tube takes the radius the component
+    before it shows at its aft end unless that one takes its own from the tube, else the
+    radius of the component after it; an automatic transition (or nose cone base) end takes
+    the neighbouring component's; an automatic radius passes through automatic tubes; -1
+    means "none" (a transition's automatic end shows none).  Our body list is OpenRocket's
+    ``getPrevious/NextSymmetricComponent`` chain for in-line components (stages follow
+    each other; pods are not in it).
+    """
+
+    def __init__(self, body: list):
+        self.body = body
+        self.ref: dict[int, int | None] = {}     # auto tube -> the neighbour it takes from
+        self.busy: set[int] = set()
+
+    def _auto(self, i: int, key: str) -> bool:
+        return self.body[i].geo.get(key) is None
+
+    def front(self, i: int) -> float:
+        """``getFrontAutoRadius``: the radius component ``i`` shows to the one after it."""
+        c = self.body[i]
+        if c.kind == "bodytube":
+            if self._auto(i, "radius"):
+                return self.front(i - 1) if i > 0 else -1.0
+            return c.geo["radius"]
+        return -1.0 if self._auto(i, "aft_radius") else c.geo["aft_radius"]
+
+    def rear(self, i: int) -> float:
+        """``getRearAutoRadius``: the radius component ``i`` shows to the one before it."""
+        c = self.body[i]
+        if c.kind == "bodytube":
+            if self._auto(i, "radius"):
+                return self.rear(i + 1) if i + 1 < len(self.body) else -1.0
+            return c.geo["radius"]
+        return -1.0 if self._auto(i, "fore_radius") else c.geo["fore_radius"]
+
+    def uses_next(self, i: int) -> bool:
+        c = self.body[i]
+        if c.kind == "bodytube":
+            return self._auto(i, "radius") and self._ref(i) == i + 1
+        return self._auto(i, "aft_radius")
+
+    def uses_previous(self, i: int) -> bool:
+        c = self.body[i]
+        if c.kind == "bodytube":
+            return self._auto(i, "radius") and self._ref(i) == i - 1
+        return self._auto(i, "fore_radius")
+
+    def _ref(self, i: int):
+        if i not in self.ref:
+            self.tube(i)
+        return self.ref.get(i)
+
+    def tube(self, i: int) -> float:
+        """``BodyTube.getAutoOuterRadius`` of the automatic tube ``i``."""
+        if i in self.busy:              # asked again while being worked out: takes from no one yet
+            return -1.0
+        self.busy.add(i)
+        r, ref = -1.0, None
+        if i > 0 and not self.uses_next(i - 1):
+            r, ref = self.front(i - 1), i - 1
+        if r < 0 and i + 1 < len(self.body) and not self.uses_previous(i + 1):
+            r, ref = self.rear(i + 1), i + 1
+        self.busy.discard(i)
+        self.ref[i] = ref
+        return r
+
+    def fore(self, i: int) -> float:
+        return self.front(i - 1) if i > 0 else DEFAULT_RADIUS
+
+    def aft(self, i: int) -> float:
+        return self.rear(i + 1) if i + 1 < len(self.body) else DEFAULT_RADIUS
+
+
 def _resolve_body_radii(body: list) -> None:
-    """Fill ``auto`` radii of body components from their neighbours (OpenRocket rules)."""
-    for _ in range(3):
-        for i, c in enumerate(body):
-            prev = body[i - 1] if i > 0 else None
-            nxt = body[i + 1] if i + 1 < len(body) else None
-            g = c.geo
-            prev_aft = None if prev is None else (prev.geo.get("radius") if prev.kind == "bodytube"
-                                                  else prev.geo.get("aft_radius"))
-            next_fore = None if nxt is None else (nxt.geo.get("radius") if nxt.kind == "bodytube"
-                                                  else nxt.geo.get("fore_radius"))
-            if c.kind == "bodytube" and g["radius"] is None:
-                g["radius"] = prev_aft if prev_aft is not None else next_fore
-            if c.kind in ("nosecone", "transition"):
-                if g["fore_radius"] is None:
-                    g["fore_radius"] = prev_aft
-                if g["aft_radius"] is None:
-                    g["aft_radius"] = next_fore
-    for c in body:
-        for key in ("radius", "fore_radius", "aft_radius"):
-            if key in c.geo and c.geo[key] is None:
+    """Fill ``auto`` radii of body components from their neighbours (OpenRocket rules,
+    :class:`_AutoRadii`).  A radius OpenRocket would find none for (-1: e.g. an automatic
+    transition end beside another one) takes the value the file cached after ``auto``,
+    else it is an error."""
+    rules = _AutoRadii(body)
+    found = []
+    for i, c in enumerate(body):
+        if c.kind == "bodytube" and c.geo["radius"] is None:
+            found.append((c, "radius", rules.tube(i)))
+        if c.kind in ("nosecone", "transition"):
+            if c.geo["fore_radius"] is None:
+                found.append((c, "fore_radius", rules.fore(i)))
+            if c.geo["aft_radius"] is None:
+                found.append((c, "aft_radius", rules.aft(i)))
+    for c, key, r in found:             # all worked out from the file's values, then set
+        if r < 0:
+            tag = "radius" if key == "radius" else key.replace("_", "")
+            cached = oc.auto_cache(c.element, tag)
+            if cached is None:
                 raise c.element.error(f"'auto' {key.replace('_', ' ')} of '{c.name}' has no "
-                                      f"neighbouring component to take it from",
-                                      "radius" if key == "radius" else key.replace("_", ""))
+                                      f"neighbouring component to take it from", tag)
+            r = cached
+        c.geo[key] = r
 
 
 def build_tree(root: Element) -> OrkRocket:

@@ -311,3 +311,64 @@ def test_tube_fin_auto_radius_is_openrockets(tmp_path):
         tubes = next(c for c in doc.rocket.components() if c.kind == "tubefinset")
         assert tubes.geo["count"] == n
         assert tubes.geo["outer_radius"] == pytest.approx(factor * tubes.geo["parent_radius"], rel=1e-12)
+
+
+_STALE_AUTO = """<?xml version='1.0' encoding='utf-8'?>
+<openrocket version="1.8" creator="OpenRocket 22.02">
+  <rocket><name>stale</name>
+    <subcomponents>
+      <stage><name>Dart</name><subcomponents>
+        <nosecone><name>nose</name><length>0.2</length><thickness>filled</thickness>
+          <shape>conical</shape><aftradius>auto 0.025</aftradius></nosecone>
+        <bodytube><name>auto tube</name><length>0.01</length><thickness>0.001</thickness>
+          <radius>auto 0.025</radius></bodytube>
+        <bodytube><name>dart tube</name><length>0.3</length><thickness>0.001</thickness>
+          <radius>0.02</radius></bodytube>
+        <transition><name>shoulder</name><length>0.1</length><thickness>filled</thickness>
+          <shape>conical</shape><foreradius>auto 0.056</foreradius><aftradius>auto 0.025</aftradius>
+        </transition>
+      </subcomponents></stage>
+      <stage><name>Booster</name><subcomponents>
+        <bodytube><name>booster auto</name><length>0.05</length><thickness>0.002</thickness>
+          <radius>auto 0.025</radius></bodytube>
+        <bodytube><name>booster tube</name><length>0.5</length><thickness>0.002</thickness>
+          <radius>0.05</radius>
+          <subcomponents>
+            <centeringring><name>ring</name><position type="top">0.1</position><length>0.003</length>
+              <outerradius>auto 0.03</outerradius><innerradius>0.01</innerradius></centeringring>
+          </subcomponents></bodytube>
+        <transition><name>boattail</name><length>0.02</length><thickness>filled</thickness>
+          <shape>conical</shape><foreradius>auto 0.056</foreradius><aftradius>0.04</aftradius>
+        </transition>
+      </subcomponents></stage>
+    </subcomponents>
+  </rocket>
+</openrocket>
+"""
+
+
+def test_auto_radius_with_a_cached_number_is_automatic(tmp_path):
+    """OpenRocket 22.02+ writes an automatic radius as ``auto <number>``: its loader sets the
+    number and then switches the radius to automatic (``DoubleSetter`` with the special
+    string "auto"), so the radius is the neighbour's whatever the (possibly stale) number.
+    Each expected value follows OpenRocket's ``BodyTube.getAutoOuterRadius`` /
+    ``Transition.getAutoFore/AftRadius`` by hand; every cached number here is stale."""
+    doc = read_ork(_write(tmp_path, _STALE_AUTO))
+    c = {x.name: x for x in doc.rocket.components()}
+    # the nose base looks aft: through the automatic tube to the 0.02 m tube
+    assert c["nose"].geo["aft_radius"] == pytest.approx(0.02)
+    # the automatic tube: the nose takes its radius from it, so it looks aft too
+    assert c["auto tube"].geo["radius"] == pytest.approx(0.02)
+    # the shoulder: the 0.02 m tube before it, and through the booster's automatic tube
+    # (across the stage boundary) to the 0.05 m tube after it
+    assert c["shoulder"].geo["fore_radius"] == pytest.approx(0.02)
+    assert c["shoulder"].geo["aft_radius"] == pytest.approx(0.05)
+    # the booster's automatic tube: the shoulder before it takes its aft radius from it,
+    # so it takes the 0.05 m tube's after it
+    assert c["booster auto"].geo["radius"] == pytest.approx(0.05)
+    assert c["boattail"].geo["fore_radius"] == pytest.approx(0.05)
+    # an automatic ring outside: the tube's inner radius, not the cached 0.03
+    assert c["ring"].geo["outer_radius"] == pytest.approx(0.048)
+    # reference diameter: the largest body radius (0.05), not the stale 0.056
+    from ironbark_opt.openrocket.build import geometry
+    assert geometry(doc).reference_radius() == pytest.approx(0.05)
