@@ -69,3 +69,20 @@ def mccoy_head_drag_transonic(mach, tau: float):
     m = np.maximum(np.asarray(mach, dtype=float), 1e-3)
     t = float(tau)
     return np.maximum(0.368 * t ** 1.8 + 1.6 * t * (m * m - 1.0) / (2.4 * m * m), 0.0)
+
+
+def mccoy_head_drag_supersonic(mach, tau: float, head_shape: float):
+    """Supersonic pressure drag of a pointed nose [-] on its base area at ``mach`` [-]
+    (> 1): ``(C1 - C2 tau^2) / z (tau sqrt z)^(C3 + C4 tau)``, ``z = M^2 - 1``, with
+    C1 = 0.7156 - 0.5313 R + 0.5950 R^2, C2 = 0.0796 + 0.0779 R, C3 = 1.587 + 0.049 R,
+    C4 = 0.1122 + 0.1658 R (McCoy 1981, MC DRAG, the supersonic head-drag equation;
+    ``head_shape`` R = R_T / R_ogive: 0 a tangent ogive, 1 a cone; ``tau`` [-] = base
+    diameter / nose length).  Numeric-only; ``mach`` is floored at 1.001."""
+    m = np.maximum(np.asarray(mach, dtype=float), 1.001)
+    r, t = float(head_shape), float(tau)
+    c1 = 0.7156 - 0.5313 * r + 0.5950 * r * r
+    c2 = 0.0796 + 0.0779 * r
+    c3 = 1.587 + 0.049 * r
+    c4 = 0.1122 + 0.1658 * r
+    z = m * m - 1.0
+    return (c1 - c2 * t * t) / z * (t * np.sqrt(z)) ** (c3 + c4 * t)

@@ -9,8 +9,11 @@ software* (OpenRocket technical documentation, 2013), sec. 3.4:
 - stagnation pressure ratio q_stag/q = 1 + M^2/4 + M^4/40 (M < 1),
   1.84 - 0.76/M^2 + 0.166/M^4 + 0.035/M^6 (M > 1)  (eq. 3.85-3.86);
 - nose cone: subsonic 0.8 sin^2(phi) with phi the joint half-angle of the
-  nose profile (eq. 3.81); above M = 1 the same value times q_stag/q
-  (rough supersonic continuation, a stand-in until the panel solver);
+  nose profile (eq. 3.81; above M = 1 times q_stag/q), or, where larger, its
+  wave drag by McCoy's MC DRAG (BRL ARBRL-TR-02293, 1981): transonic head drag
+  from his critical Mach number to Mach 1, supersonic head drag (with his
+  head-shape parameter R_T/R) from Mach 1.15 (:func:`nose_pressure_ca`; before
+  session 16 a nose meeting the body tangentially had no wave drag here at all);
 - a blunt (flat) forward face, e.g. a booster's front after separation, whose
   body starts with a tube: the stagnation pressure on it, 0.85 q_stag/q on
   its area pi r_front^2 (eq. 3.87; Hoerner, *Fluid-Dynamic Drag*, 1965,
@@ -86,7 +89,8 @@ def joint_half_angle(comp) -> float:
     return float(np.arctan(abs(r[-1] - r[-2]) / (x[-1] - x[-2])))
 
 
-def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.ndarray:
+def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True,
+                          nose_joint: bool = True) -> np.ndarray:
     """Zero-lift pressure drag a potential-flow solution cannot have [-] on the
     rocket's reference area vs Mach (numeric-only): a flat forward face (eq. 3.87),
     blunt nose joints (eq. 3.81),
@@ -99,7 +103,8 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.nd
     the critical Mach number their flow is attached and subcritical, so they have no
     pressure drag (d'Alembert); eq. 3.89's rise stands for their compressibility
     drag, which the panel tables take from the critical-Mach model instead
-    (:mod:`panair.transonic`)."""
+    (:mod:`panair.transonic`).  ``nose_joint=False`` leaves out the nose joint's drag
+    (:func:`pressure_ca` takes the nose from :func:`nose_pressure_ca`)."""
     m = np.asarray(mach, dtype=float)
     a_ref = rocket.reference_area()
     ca = np.zeros_like(m)
@@ -110,9 +115,8 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.nd
         ca += 0.85 * q * np.pi * r_front ** 2 / a_ref
     for comp in rocket.body_components():
         if isinstance(comp, NoseCone):
-            phi = joint_half_angle(comp)
-            sub = 0.8 * np.sin(phi) ** 2 * comp.radius ** 2 * np.pi / a_ref
-            ca += np.where(m < 1.0, sub, sub * q)
+            if nose_joint:
+                ca += _nose_joint_ca(comp, m, a_ref)
         elif isinstance(comp, Transition) and comp.aft_radius < comp.fore_radius:
             ca += boattail_separation_fraction(comp) * np.asarray(cd_base(m), dtype=float) \
                 * np.pi * (comp.fore_radius ** 2 - comp.aft_radius ** 2) / a_ref
@@ -123,6 +127,57 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True) -> np.nd
         sweep = np.arctan2(fins.sweep_length, fins.span)
         ca += leading_edge_cd(m, fins.section.kind) * np.cos(sweep) ** 2 * frontal
     return ca
+
+
+def _nose_joint_ca(nose, mach, a_ref: float) -> np.ndarray:
+    """Separated-flow drag of a nose's joint [-] (eq. 3.81, times q_stag/q above Mach 1)."""
+    m = np.asarray(mach, dtype=float)
+    sub = 0.8 * np.sin(joint_half_angle(nose)) ** 2 * nose.radius ** 2 * np.pi / a_ref
+    return np.where(m < 1.0, sub, sub * stagnation_ratio(m))
+
+
+def head_shape_ratio(nose) -> float:
+    """McCoy's head-shape parameter R_T / R [-] of a nose (MC DRAG: 0 a tangent ogive, 1 a
+    cone): a secant ogive's tangent-ogive radius over its own; a cone 1; a nose meeting
+    the body tangentially (joint angle below 1 deg) 0; any other shape (power series,
+    parabolic K < 1) its joint angle over the half-angle of the cone of the same length
+    and base (our interpolation between McCoy's two ends)."""
+    if nose.shape == "conical":
+        return 1.0
+    if nose.shape == "secant_ogive":
+        rho_t = (nose.radius ** 2 + nose.length ** 2) / (2.0 * nose.radius)
+        return float(np.clip(rho_t / nose.ogive_radius, 0.0, 1.0))
+    joint = joint_half_angle(nose)
+    if joint < np.radians(1.0):
+        return 0.0
+    return float(np.clip(joint / np.arctan(nose.radius / nose.length), 0.0, 1.0))
+
+
+#: Mach numbers over which the empirical nose drag goes from McCoy's transonic to his
+#: supersonic equation (quintic smooth step; our choice: MC DRAG's two equations meet there)
+NOSE_BLEND_MACH = (1.0, 1.15)
+
+
+def nose_pressure_ca(nose, mach, a_ref: float) -> np.ndarray:
+    """Pressure drag of a pointed nose [-] on ``a_ref`` [m^2] vs ``mach`` [-]
+    (numeric-only): the larger of its joint's separated-flow drag (eq. 3.81) and its wave
+    drag by McCoy's MC DRAG (1981): none below his critical Mach number, his transonic
+    head drag up to Mach 1, his supersonic head drag (R_T / R from
+    :func:`head_shape_ratio`) from Mach 1.15, a smooth step between
+    (:data:`NOSE_BLEND_MACH`).  McCoy's supersonic equation is within -9 ... +9 % of the
+    exact cone (Taylor-Maccoll) at Mach 1.2-4.3 on a 10 deg cone; an ogive-family fit,
+    it stands for the other pointed shapes too."""
+    from ironbark_opt.aero.compressibility import (mccoy_head_drag_supersonic,
+                                                   mccoy_head_drag_transonic)
+    from ironbark_opt.aero.friction_flatplate import smooth_step
+    m = np.asarray(mach, dtype=float)
+    tau = 2.0 * nose.radius / nose.length
+    sonic = mccoy_head_drag_transonic(np.minimum(m, 1.0), tau)
+    sup = mccoy_head_drag_supersonic(m, tau, head_shape_ratio(nose))
+    lo, hi = NOSE_BLEND_MACH
+    w = np.asarray(smooth_step(m, lo, hi), dtype=float)
+    wave = np.where(m <= lo, sonic, (1.0 - w) * sonic + w * sup)
+    return np.maximum(_nose_joint_ca(nose, m, a_ref), wave * nose.radius ** 2 * np.pi / a_ref)
 
 
 def boattail_separation_fraction(transition) -> float:
@@ -160,7 +215,14 @@ def pressure_ca(rocket, mach) -> np.ndarray:
     :func:`separated_pressure_ca` (square fin edges), :func:`streamlined_fin_ca`
     (other fin sections) and blunt fin trailing edges (eq. 3.94)."""
     m = np.asarray(mach, dtype=float)
-    ca = separated_pressure_ca(rocket, m, streamlined_edges=False)
+    ca = separated_pressure_ca(rocket, m, streamlined_edges=False, nose_joint=False)
+    front = min(rocket.body_components(), key=lambda c: c.x)
+    for comp in rocket.body_components():
+        if isinstance(comp, NoseCone):
+            # pointed at the front: McCoy's wave drag; a nose further aft (after a
+            # separation) only its joint
+            ca += (nose_pressure_ca(comp, m, rocket.reference_area()) if comp is front
+                   else _nose_joint_ca(comp, m, rocket.reference_area()))
     for fins in rocket.fin_sets():
         if fins.section.kind != "square":
             ca += streamlined_fin_ca(fins, m, rocket.reference_area())

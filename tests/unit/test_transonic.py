@@ -122,3 +122,40 @@ def test_ogival_nose_replaces_its_share_of_the_sonic_anchor():
     assert p[np.argmin(np.abs(m - 0.97))] >= float(rise(0.97)) - 1e-9
     without = zero_lift_pressure(m, m_cr, sub, m_sup, p_sup)
     assert without[np.argmin(np.abs(m - 1.0))] == pytest.approx(0.30, abs=1e-9)
+
+
+def test_mccoy_supersonic_head_drag_vs_exact_cone():
+    """McCoy's supersonic head drag with R_T / R = 1 (a cone) against the exact conical
+    flow (Taylor-Maccoll, panair.solver.nose_correction.TangentCone) on the Basic
+    Finner's 10 deg cone: within 10 % at Mach 1.2-4.3 (measured -9 ... +9 %)."""
+    import math
+
+    from ironbark_opt.aero.compressibility import mccoy_head_drag_supersonic
+    from panair.solver.nose_correction import TangentCone
+    half = math.atan(0.5 / 2.84)
+    for m in (1.2, 1.5, 2.0, 3.0, 4.3):
+        exact = float(TangentCone(m).cp(np.array([half]))[0])
+        assert float(mccoy_head_drag_supersonic(m, 1 / 2.84, 1.0)) == pytest.approx(exact, rel=0.10)
+
+
+def test_empirical_nose_drag_has_wave_drag_on_tangent_noses():
+    """The empirical path's nose (ironbark_opt.aero.empirical_drag.nose_pressure_ca): a
+    tangent ogive and a von Karman nose (joint angle 0) get McCoy's wave drag above his
+    critical Mach number (none before session 16), continuous through the blend, and a
+    cone keeps at least its joint's separated-flow drag."""
+    from ironbark_opt.aero.compressibility import mccoy_head_drag_transonic
+    from ironbark_opt.aero.empirical_drag import head_shape_ratio, nose_pressure_ca
+    from ironbark_opt.rocket.nose import NoseCone
+    a_ref = np.pi * 0.05 ** 2
+    m = np.linspace(0.5, 3.0, 2001)
+    for shape in ("tangent_ogive", "von_karman"):
+        nose = NoseCone(shape=shape, length=0.5, radius=0.05)
+        assert head_shape_ratio(nose) == 0.0
+        ca = nose_pressure_ca(nose, m, a_ref)
+        assert np.all(ca[m < 0.9] < 1e-6)
+        assert ca[np.argmin(np.abs(m - 1.0))] == pytest.approx(float(mccoy_head_drag_transonic(1.0, 0.2)), rel=1e-9)
+        assert np.all(ca[m >= 1.0] > 0.015) and np.max(np.abs(np.diff(ca))) < 2e-3
+    cone = NoseCone(shape="conical", length=0.5, radius=0.05)
+    assert head_shape_ratio(cone) == 1.0
+    joint = 0.8 * np.sin(np.arctan(0.1)) ** 2
+    assert np.all(nose_pressure_ca(cone, m[m < 0.9], a_ref) >= joint - 1e-12)
