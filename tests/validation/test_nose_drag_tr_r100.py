@@ -139,9 +139,10 @@ def test_nose_pressure_drag_vs_tr_r100(comparison):
     # the empirical path (ironbark_opt.aero.empirical_drag: McCoy's MC DRAG head drag; it had
     # none on the tangent noses before session 16): on the pointed noses within -0.06 ...
     # +0.07 of the data from Mach 1.0 (von Karman, the minimum-drag shape, +0.06 at Mach
-    # 1.1-1.2 where McCoy's ogive fit is above it), within 0.02 below the drag rise
+    # 1.1-1.2 where McCoy's ogive fit is above it), below 0.03 before the drag rise (as the
+    # tables: McCoy's rise starts at Mach 0.90)
     emp = pointed[pointed["mach"] >= 1.0]
     d_emp = emp["empirical"] - emp["measured"]
     print(f"empirical path, pointed noses, Mach >= 1.0: diff {d_emp.min():+.4f} ... {d_emp.max():+.4f}")
     assert np.all(d_emp > -0.06) and np.all(d_emp < 0.07)
-    assert np.all(quiet["empirical"] < 0.02)
+    assert np.all(quiet["empirical"] < 0.03)
