@@ -685,7 +685,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
             "zero_lift_pressure_model": "panair.transonic: subsonic separated-flow and edge drag "
                                         "(Niskanen 2013 eq. 3.81/3.88/3.89) below the critical "
                                         "Mach number, monotone rise to the sonic (area-rule) "
-                                        "value, supersonic panel solutions above",
+                                        "value (an ogival nose: McCoy's transonic head drag, "
+                                        "see nose_transonic), supersonic panel solutions above",
             "supersonic_separated_transitions_x_m": [[x0, x1] for x0, x1, _, _ in
                                                      geometry.body.separated_transitions()],
             "mach_critical": m_cr, "mach_critical_body": m_cr_body,
