@@ -54,7 +54,9 @@ supersonic Mach number linear theory cannot solve at all (panels steeper
 than the Mach cone, non-physical pressures at the lifting angles) is solved
 by the local-inclination method instead (tangent cone, tangent wedge,
 Prandtl-Meyer; :mod:`panair.solver.local_inclination`), listed in the
-metadata ``mach_local_inclination``.  The other exception is recorded: a supersonic angle of attack above the largest one
+metadata ``mach_local_inclination``, after one more try on a body mesh free of the
+cross-body Mach-cone coincidence at that Mach number (:func:`_remesh_refused`; the
+Mach numbers it solves listed in ``mach_remeshed``).  The other exception is recorded: a supersonic angle of attack above the largest one
 linear theory solves (it breaks at large angles: expansion past vacuum)
 continues the last solved one with Jorgensen's potential-flow shape
 (:func:`_solve_one`); those angles are listed per Mach number in the
@@ -215,6 +217,35 @@ def _linear_how(solver) -> str:
     leading edge is sonic for linear theory and its pressures went out of range
     (kept in the forces; :func:`panair.solver.supersonic._sonic_leading_edge`)."""
     return "linear-sonic-le" if getattr(solver, "sonic_le_out_of_range", False) else "linear"
+
+
+def _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, rule, results,
+                    extrapolated, cp_min, method, ckpt) -> list:
+    """Once more, on a body mesh free of the cross-body Mach-cone coincidence at that
+    Mach number (:meth:`MeshOptions.coincidence_free`), every supersonic Mach number
+    linear theory refused on the sweep's shared mesh (method "local-inclination");
+    its results replaced (and checkpointed) where linear theory solves it there.
+    Returns those Mach numbers (sorted).  A mesh the rule leaves unchanged, or
+    panels steeper than the Mach cone (no body spacing helps), are not retried."""
+    out = []
+    radius = float(np.max(geometry.body.r))
+    for m in sorted(m for m, how in method.items() if how == "local-inclination"):
+        opt_m = opt_sup.coincidence_free(radius, m)
+        if opt_m == opt_sup:
+            continue
+        panels = build_panels(mesh_rocket(geometry, symmetric=symmetric, options=opt_m),
+                              symmetric=symmetric)
+        mirror_plane(panels)
+        try:
+            mm, arr, extra, cpm, how = _solve_one((panels, m, alpha, sref, lref, xref, rule))
+        except SolverError:
+            continue
+        if how == "local-inclination":
+            continue
+        results[mm], extrapolated[mm], cp_min[mm], method[mm] = arr, extra, cpm, how
+        ckpt.save(mm, arr, extra, cpm, how)
+        out.append(mm)
+    return out
 
 
 def _local_inclination(panels, mach, alphas, sref, lref, xref):
@@ -444,6 +475,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     finally:
         if bar:
             bar.close()
+    remeshed = _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, pressure_rule,
+                               results, extrapolated, cp_min, method, ckpt)
     # blunt fin leading edges: meshed as wedges without axial force where linear
     # theory cannot solve them (supersonic meshes); their drag is Niskanen's
     sharpened = [float(m) for m in builtin_all if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0
@@ -472,6 +505,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "pressure_rule": pressure_rule,
             "mach_local_inclination": sorted(m for m, how in method.items()
                                              if how == "local-inclination"),
+            "mach_remeshed": remeshed,
             "mach_sonic_leading_edge": sorted(m for m, how in method.items()
                                               if how == "linear-sonic-le"),
             "body_cp_min_incompressible": next((cp_min[m] for m in sorted(cp_min)
