@@ -292,10 +292,9 @@ class MeshOptions:
     panels per fin; wake_length : wake length [body lengths];
     chord_clustering : 0 uniform ... 1 full cosine clustering of the
     chordwise stations at the fin leading and trailing edges;
-    supersonic_span_factor, supersonic_chord_factor : n_span and n_chord are
-    multiplied by these for supersonic Mach numbers (:meth:`for_mach`; the
-    defaults mesh the fins 12 x 30 there, 12 x 20 subsonic); blunt_le_wedge :
-    blunt (square, rounded) fin leading edges are meshed as a wedge this many fin
+    supersonic_span_factor : n_span is multiplied by this for supersonic
+    Mach numbers (:meth:`for_mach`); blunt_le_wedge : blunt (square,
+    rounded) fin leading edges are meshed as a wedge this many fin
     thicknesses long (0: as they are; :meth:`for_mach` sets
     ``SUPERSONIC_LE_WEDGE`` for supersonic Mach numbers, where linear theory
     cannot solve a blunt edge; :meth:`FinGeometry.sharpened`); tip_mach :
@@ -320,44 +319,31 @@ class MeshOptions:
     (Polhamus, NASA TN D-3767, 1966: the suction is lost, its force turning normal); with
     it the Kestrel's table CA at 8 deg went negative at Mach 0.35 (0.071 -> -0.055) and the
     Basic Finner's CA(4 deg) - CA(0) was -0.0136 against PANAIR's -0.0090 (without it
-    -0.0077 on 6 x 30 fin panels; -0.0069 on today's 12 x 20).  Rounded and airfoil edges
-    keep theirs (a round nose sustains suction).
+    -0.0077).  Rounded and airfoil edges keep theirs (a round nose sustains suction).
 
-    Why two fin meshes: the two solvers converge differently (Basic Finner
-    against real PANAIR, tests/validation/test_panel_basic_finner.py).  The
-    supersonic source solution needs narrow strips and fine chordwise panels:
-    Mach 1.6, n_span 6 -> 12 moves CN-alpha +2.0 % and Cm-alpha +3.3 %, n_chord
-    30 -> 60 +1.9 %, and at 12 x 30 the default vs twice-finer change is under
-    1.3 % (session 2).  The subsonic doublet solution converges on PANAIR from
-    above as the strips narrow, about as 1 / n_span, and hardly depends on the
-    chordwise count (session 16; Mach 0.4 / 0.6 / 0.8, n_chord 30, n_span 6 / 9 /
-    12 / 24: CN-alpha +3.3 / +2.0 / +1.4 / +0.5 %, +3.4 / +2.1 / +1.4 / +0.5 %,
-    +3.6 / +2.2 / +1.5 / +0.4 %; Cm-alpha +4.2 / +2.4 / +1.4 / +0.1 % at Mach
-    0.6, the others within 0.2 % of these; n_span 12, n_chord 15 / 20 / 30 / 45 at
-    Mach 0.6: CN-alpha +1.39 / +1.39 / +1.41 / +1.43 %, Cm-alpha +1.18 / +1.29 /
-    +1.43 / +1.55 %).  So the subsonic fins are meshed 12 x 20 (Mach 0.4 / 0.6 /
-    0.8: CN-alpha +1.4 / +1.4 / +1.5 %, Cm-alpha +1.3 / +1.3 / +1.3 %; 12 -> 24
-    strips moves them a further -1.0 / -1.3 %), on about the panels of the former 6 x 30
-    (Basic Finner half model 1976 against 1948; the two-stage .ork fixture's
-    build 0.96x the CPU time of 6 x 30, where 12 x 30 took 1.41x, against issue
-    13's 60 s per build).  What the chordwise count does move is the leading
-    edges' suction: CA(4 deg) - CA(0) at Mach 0.6 -0.0061 / -0.0064 / -0.0070 /
-    -0.0075 for n_chord 15 / 20 / 30 / 45 (PANAIR -0.0083).  (Until the sharp
-    leading edge entered the surface-gradient stencil, session 15, 6 strips
-    looked best, -1.9 %, and 12 / 24 drifted to -3.8 / -4.7 %: the leading-edge
-    loss cancelled the strip-width error.)
+    Why two fin meshes: the two solvers converge differently in the fin
+    strip width (measured on the Basic Finner, session 2).  The supersonic
+    source solution needs narrow strips: Mach 1.6, n_span 6 -> 12 moves
+    CN-alpha +2.0 % and Cm-alpha +3.3 %, and with 12 strips the default vs
+    twice-finer change is under 1.3 %.  The subsonic doublet solution
+    converges on PANAIR from above as the strips narrow (Basic Finner, Mach
+    0.6, n_span 6 / 9 / 12 / 24: CN-alpha +3.4 / +2.1 / +1.4 / +0.5 %,
+    Cm-alpha +4.2 / +2.4 / +1.4 / +0.1 %; n_chord 60 instead of 30 moves
+    CN-alpha +0.1 %); 6 strips are kept for cost (within 5 % of PANAIR at
+    Mach 0.4-0.8).  (Until the sharp leading edge entered the surface-gradient
+    stencil, session 15, 6 looked best, -1.9 %, and 12 / 24 drifted to
+    -3.8 / -4.7 %: the leading-edge loss cancelled the strip-width error.)
     """
 
     n_theta: int = 32
     n_nose: int = 20
     body_spacing: float = 0.4
-    n_chord: int = 20
-    n_span: int = 12
+    n_chord: int = 30
+    n_span: int = 6
     wake_length: float = 5.0
     refine: float = 1.0
     chord_clustering: float = 1.0
-    supersonic_span_factor: float = 1.0
-    supersonic_chord_factor: float = 1.5
+    supersonic_span_factor: float = 2.0
     blunt_le_wedge: float = 0.0
     tip_mach: tuple = ()
     mirror_seam: bool = True
@@ -368,16 +354,14 @@ class MeshOptions:
         return max(2, int(round(getattr(self, name) * self.refine)))
 
     def for_mach(self, mach: float) -> "MeshOptions":
-        """The options to mesh with for Mach ``mach`` [-] (supersonic: the fins'
-        chordwise panels x ``supersonic_chord_factor``, strips x ``supersonic_span_factor``)."""
+        """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
         if mach <= 1.0:
             return self
-        if self.supersonic_span_factor == 1.0 and self.supersonic_chord_factor == 1.0 \
-                and self.blunt_le_wedge > 0 and self.separated_transitions and self.sharp_le_axial:
+        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions \
+                and self.sharp_le_axial:
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
-                       n_chord=max(1, int(round(self.n_chord * self.supersonic_chord_factor))),
-                       supersonic_span_factor=1.0, supersonic_chord_factor=1.0,
+                       supersonic_span_factor=1.0,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
                        separated_transitions=True, sharp_le_axial=True)
 

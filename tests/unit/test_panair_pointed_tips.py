@@ -27,8 +27,7 @@ def _swept_rocket(tip_chord, freeform=True):
     outline = ([0.0, 1.0], [0.0, 0.0744], [0.079, tip_chord]) if freeform else None
     fins = (FinGeometry(3, 0.079, tip_chord, 0.047, 0.0744, 0.891, 0.0025, section="rounded",
                         roll=np.pi / 2, outline=outline),)
-    opt = MeshOptions(n_theta=24, n_nose=10, body_spacing=0.8, n_chord=12, n_span=6,
-                      supersonic_span_factor=2.0, supersonic_chord_factor=1.0)
+    opt = MeshOptions(n_theta=24, n_nose=10, body_spacing=0.8, n_chord=12, n_span=6)
     return build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=False,
                                     options=opt.for_mach(1.2)), symmetric=False)
 

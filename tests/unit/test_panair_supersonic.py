@@ -168,8 +168,7 @@ def test_three_fin_haack_rocket_with_body_behind_blunt_fins_solves():
     fins = (FinGeometry(3, 0.23, 0.11, 0.185, 0.12, 2.145, 0.0058, roll=np.pi / 2,
                         section="rounded"),)
     opt = replace(MeshOptions(n_theta=24, n_nose=12, body_spacing=0.6, n_chord=16,
-                              n_span=4, supersonic_span_factor=2.0,
-                              supersonic_chord_factor=1.0).for_mach(1.2), tip_mach=(1.5,))
+                              n_span=4).for_mach(1.2), tip_mach=(1.5,))
     p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=False, options=opt),
                      symmetric=False)
     sref = math.pi * 0.075**2

@@ -12,8 +12,7 @@ from panair.sweep import build_table, sweep_pressure
 from panair.solver import build_panels, make_solver
 from panair.mesh import mesh_rocket
 
-COARSE = MeshOptions(n_theta=16, n_nose=8, body_spacing=1.0, n_chord=8, n_span=3,
-                     supersonic_span_factor=2.0, supersonic_chord_factor=1.0)
+COARSE = MeshOptions(n_theta=16, n_nose=8, body_spacing=1.0, n_chord=8, n_span=3)
 
 
 def _bf():
@@ -51,13 +50,9 @@ def test_sweep_matches_direct_solve_and_parallel():
 
 
 def test_supersonic_mach_numbers_use_the_finer_fin_strips():
-    """MeshOptions.for_mach: n_span x supersonic_span_factor and n_chord x
-    supersonic_chord_factor above Mach 1 (default fins 12 x 20 subsonic, 12 x 30
-    supersonic); the sweep solves each Mach number on its regime's mesh (same
-    numbers as a direct solve on that mesh)."""
-    default = MeshOptions()
-    assert (default.n_span, default.n_chord) == (12, 20)
-    assert (default.for_mach(1.5).n_span, default.for_mach(1.5).n_chord) == (12, 30)
+    """MeshOptions.for_mach: n_span x supersonic_span_factor above Mach 1; the
+    sweep solves each Mach number on its regime's mesh (same numbers as a
+    direct solve on that mesh)."""
     assert COARSE.for_mach(0.8) is COARSE
     sup = COARSE.for_mach(1.5)
     assert sup.n_span == 6 and sup.supersonic_span_factor == 1.0 and sup.for_mach(2.0) is sup

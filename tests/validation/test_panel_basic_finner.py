@@ -9,10 +9,6 @@ Pressure CA at alpha 0 is a few thousandths at subsonic speed (PANAIR
 
 Also the mesh convergence check: default mesh vs twice finer (every count
 doubled) within 2 %.  Slow (each case builds dense influence matrices).
-
-Measured (session 16, default fins 12 strips x 20 chordwise panels,
-MeshOptions): CN-alpha +1.4 / +1.4 / +1.5 %, Cm-alpha +1.3 / +1.3 / +1.3 % at
-Mach 0.4 / 0.6 / 0.8 (6 x 30 before: +3.3 / +3.4 / +3.6 %, +4.2 / +4.2 / +4.4 %).
 """
 from pathlib import Path
 
@@ -64,8 +60,7 @@ def test_basic_finner_subsonic_vs_panair(mach):
     # the axial force falls with alpha (the fins' and nose's suction), but a sharp fin
     # leading edge keeps none of its attached-flow suction (MeshOptions.sharp_le_axial,
     # Polhamus): less than inviscid PANAIR's full suction, more than half of it
-    # (measured Mach 0.4: -0.0077 vs -0.0090 on 6 x 30 fin panels, -0.0069 on 12 x 20;
-    # with the edge suction -0.0136)
+    # (measured Mach 0.4: -0.0077 vs -0.0090; with the edge suction -0.0136)
     assert 0.5 * dca4_ref > dca4 > 1.05 * dca4_ref
 
 

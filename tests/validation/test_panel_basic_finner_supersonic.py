@@ -143,7 +143,7 @@ def test_supersonic_basic_finner_vs_range_data(panels):
 # the twice-finer mesh.  Measured (session 2) at Mach 1.6 with 6 spanwise fin
 # strips: +2.6 % CN-alpha, +4.6 % Cm-alpha (n_span 6 -> 12: +2.0 %, n_chord
 # 30 -> 60: +1.9 %, n_theta and the body spacing < 0.5 %); with the 12 strips
-# the supersonic mesh uses (MeshOptions.for_mach: 12 x 30) it is
+# the supersonic mesh uses (MeshOptions.supersonic_span_factor) it is
 # +0.4 % / +1.1 % / +1.3 % (CN-alpha, Cm-alpha, CA0; tip caps not integrated).
 @pytest.mark.slow
 def test_supersonic_mesh_convergence(panels):
