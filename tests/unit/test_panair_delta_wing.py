@@ -38,8 +38,9 @@ import pytest
 from scipy.special import ellipe
 
 from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
-from panair.solver import build_panels, make_solver
-from panair.solver.pressure import integrate_forces
+from panair.solver import build_panels
+
+from fin_loads import fin_panels_cn_alpha
 
 CHORD, R_BODY, THICK, X_ROOT = 0.5, 0.005, 0.002, 0.3
 
@@ -68,14 +69,7 @@ def wing_cn_alpha(mach, sweep_deg, symmetric=True, refine=1.0):
                       chord_clustering=0.0, refine=refine).for_mach(mach)
     p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=symmetric, options=opt),
                      symmetric=symmetric)
-    sref = CHORD * span
-    s = make_solver(p, mach, sref=sref, lref=CHORD)
-    res = s.solve(np.radians([0.0, 2.0]))
-    fins_id = np.unique(p.network[p.wake_upper[~p.wake_at_base]])
-    on = np.isin(p.network[s._keep], fins_id) & ~s._caps
-    cn = [integrate_forces(r.cp[s._keep][on], s._cen[on], s._nrm_f[on], s._area[on], sref=sref,
-                           lref=CHORD, xref=0.0, symmetric=p.symmetric)["CN"] for r in res]
-    return (cn[1] - cn[0]) / np.radians(2.0)
+    return fin_panels_cn_alpha(p, mach, CHORD * span, CHORD)[0]
 
 
 @pytest.mark.parametrize("mach, sweep, lo, hi", [(1.6, 45.0, -0.17, -0.12), (2.0, 45.0, -0.14, -0.08),

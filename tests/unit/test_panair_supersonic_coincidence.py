@@ -48,40 +48,15 @@ import pytest
 
 from ironbark_opt.errors import SolverError
 
+from model_toml import model_toml
+
 D = 0.1
-MOTOR = "tests/data/motors/Cesaroni_M1670.eng"
 
 
-def _toml(root):
-    return f"""
-[rocket]
-name = "von Karman fineness 3 + 7 cal"
-[rocket.mass_override]
-mass = 5.0
-cg_x = {5 * D}
-I_transverse = 0.5
-I_axial = 0.01
-[[component]]
-type = "nose_cone"
-shape = "von_karman"
-length = {3 * D}
-radius = {D / 2}
-[[component]]
-type = "body_tube"
-length = {7 * D}
-radius = {D / 2}
-[motor]
-file = "{root / MOTOR}"
-nozzle_x = {10 * D}
-[launch]
-rail_length = 3.0
-"""
 
 
 @pytest.fixture(scope="module")
 def body(tmp_path_factory):
-    from pathlib import Path
-
     from ironbark_opt.vehicle import load_rocket_geometry
     from panair.geometry_adapter import from_rocket, is_symmetric
     from panair.mesh import MeshOptions, mesh_rocket
@@ -89,7 +64,8 @@ def body(tmp_path_factory):
     from panair.sweep import supersonic_mesh_options
 
     path = tmp_path_factory.mktemp("coinc") / "vk.toml"
-    path.write_text(_toml(Path(__file__).parents[2]))
+    path.write_text(model_toml("von Karman fineness 3 + 7 cal", calibre=D, nose_shape="von_karman",
+                               nose_calibres=3, body_calibres=7, cg_x=5 * D))
     rk, _ = load_rocket_geometry(path)
     geom = from_rocket(rk)
     sym = is_symmetric(geom)

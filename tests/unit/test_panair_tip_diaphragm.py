@@ -24,8 +24,9 @@ import numpy as np
 import pytest
 
 from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, mesh_rocket
-from panair.solver import build_panels, make_solver
-from panair.solver.pressure import integrate_forces
+from panair.solver import build_panels
+
+from fin_loads import fin_panels_cn_alpha
 
 CHORD, R_BODY, THICK, X_ROOT = 0.1, 0.001, 0.0005, 0.1
 
@@ -52,14 +53,7 @@ def wing_cn_alpha(mach, span, symmetric=True):
     opt = MeshOptions(n_theta=16, n_nose=4, body_spacing=4.0).for_mach(mach)
     p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=symmetric, options=opt),
                      symmetric=symmetric)
-    sref = 2.0 * span * CHORD
-    s = make_solver(p, mach, sref=sref, lref=CHORD)
-    res = s.solve(np.radians([0.0, 2.0]))
-    fins_id = np.unique(p.network[p.wake_upper[~p.wake_at_base]])
-    on = np.isin(p.network[s._keep], fins_id) & ~s._caps
-    cn = [integrate_forces(r.cp[s._keep][on], s._cen[on], s._nrm_f[on], s._area[on], sref=sref,
-                           lref=CHORD, xref=0.0, symmetric=p.symmetric)["CN"] for r in res]
-    return (cn[1] - cn[0]) / np.radians(2.0), s
+    return fin_panels_cn_alpha(p, mach, 2.0 * span * CHORD, CHORD)
 
 
 @pytest.mark.parametrize("mach, span, tol", [(1.6, 0.1, 0.05), (2.0, 0.1, 0.05),

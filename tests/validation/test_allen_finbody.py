@@ -122,6 +122,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from model_toml import model_toml
+
 DATA = Path(__file__).parents[1] / "data" / "aero" / "allen"
 FINS = ("fin01", "fin05", "fin09", "fin10", "fin12")
 D = 0.0762                                  # body diameter, reference length [m]
@@ -141,32 +143,9 @@ def _toml(fin: str, fins: bool = True) -> str:
     """The configuration of ``fin`` (``fins=False``: the body alone)."""
     g = (DATA / fin / "geometry.md").read_text()
     sweep = float(re.search(r"tip leading edge lies ([0-9.]+) m", g).group(1))
-    motor = Path(__file__).parents[1] / "data" / "motors" / "Cesaroni_M1670.eng"
-    return f"""
-[rocket]
-name = "Allen {fin}"
-[rocket.mass_override]
-mass = 5.0
-cg_x = {X_MRC}
-I_transverse = 0.5
-I_axial = 0.01
-[[component]]
-type = "nose_cone"
-shape = "tangent_ogive"
-length = {3 * D}
-radius = {D / 2}
-[[component]]
-type = "body_tube"
-length = {9 * D}
-radius = {D / 2}
-{_fins_toml(g, sweep) if fins else ""}[aero]
-surface_roughness = 2e-6
-[motor]
-file = "{motor}"
-nozzle_x = {12 * D}
-[launch]
-rail_length = 3.0
-"""
+    return model_toml(f"Allen {fin}", calibre=D, nose_shape="tangent_ogive", nose_calibres=3,
+                      body_calibres=9, cg_x=X_MRC, extra=_fins_toml(g, sweep) if fins else "",
+                      roughness=2e-6)
 
 
 def _fins_toml(g, sweep):

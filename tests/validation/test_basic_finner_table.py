@@ -36,6 +36,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from model_toml import model_toml
+
 DATA = Path(__file__).parents[1] / "data"
 D = 0.030                                   # the range model's calibre [m]
 X_CG = 5.0 * D                              # moment reference of the range data [m]
@@ -43,25 +45,7 @@ GOAL_CNA, GOAL_CMA, GOAL_CX0 = 0.10, 0.15, 0.10
 
 
 def _toml() -> str:
-    motor = DATA / "motors" / "Cesaroni_M1670.eng"
-    return f"""
-[rocket]
-name = "Basic Finner"
-[rocket.mass_override]
-mass = 1.6
-cg_x = {X_CG}
-I_transverse = 0.01
-I_axial = 0.0002
-[[component]]
-type = "nose_cone"
-shape = "conical"
-length = {2.84 * D}
-radius = {D / 2}
-[[component]]
-type = "body_tube"
-length = {7.16 * D}
-radius = {D / 2}
-[[component]]
+    fins = f"""[[component]]
 type = "trapezoidal_fins"
 count = 4
 x = {9.0 * D}
@@ -71,14 +55,10 @@ span = {D}
 sweep_length = 0.0
 thickness = {0.08 * D}
 section = "double_wedge"
-[aero]
-surface_roughness = 2e-6
-[motor]
-file = "{motor}"
-nozzle_x = {10.0 * D}
-[launch]
-rail_length = 3.0
 """
+    return model_toml("Basic Finner", calibre=D, nose_shape="conical", nose_calibres=2.84,
+                      body_calibres=7.16, cg_x=X_CG, mass=1.6, i_transverse=0.01, i_axial=0.0002,
+                      extra=fins, roughness=2e-6)
 
 
 @pytest.mark.slow

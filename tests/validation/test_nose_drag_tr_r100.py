@@ -40,6 +40,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from model_toml import model_toml
+
 DATA = Path(__file__).parents[1] / "data"
 D = 0.1                                   # calibre of the models [m] (the data are coefficients)
 GOAL = 0.10
@@ -49,31 +51,8 @@ POINTED = {("von_karman", ""), ("lv_haack", ""), ("parabolic", "1.0"), ("parabol
 
 
 def _toml(shape: str, parameter: str) -> str:
-    param = f"shape_parameter = {parameter}\n" if parameter else ""
-    motor = DATA / "motors" / "Cesaroni_M1670.eng"
-    return f"""
-[rocket]
-name = "TR R-100 {shape} {parameter}"
-[rocket.mass_override]
-mass = 5.0
-cg_x = {5 * D}
-I_transverse = 0.5
-I_axial = 0.01
-[[component]]
-type = "nose_cone"
-shape = "{shape}"
-{param}length = {3 * D}
-radius = {D / 2}
-[[component]]
-type = "body_tube"
-length = {7 * D}
-radius = {D / 2}
-[motor]
-file = "{motor}"
-nozzle_x = {10 * D}
-[launch]
-rail_length = 3.0
-"""
+    return model_toml(f"TR R-100 {shape} {parameter}", calibre=D, nose_shape=shape,
+                      shape_parameter=parameter, nose_calibres=3, body_calibres=7, cg_x=5 * D)
 
 
 def _method(md, m) -> str:
