@@ -56,7 +56,7 @@ def ogival_nose(rocket):
     :mod:`panair.transonic` item 4)."""
     from ironbark_opt.aero.empirical_drag import joint_half_angle
     from ironbark_opt.rocket.nose import NoseCone
-    front = min(rocket.body_components(), key=lambda c: c.x)
+    front = rocket.front_component()
     if not isinstance(front, NoseCone) or joint_half_angle(front) > OGIVAL_JOINT_MAX:
         return None
     return (float(front.x + front.length), 2.0 * front.radius / front.length,

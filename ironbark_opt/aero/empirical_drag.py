@@ -90,7 +90,7 @@ def joint_half_angle(comp) -> float:
 
 
 def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True,
-                          nose_joint: bool = True) -> np.ndarray:
+                          nose_wave: bool = False) -> np.ndarray:
     """Zero-lift pressure drag a potential-flow solution cannot have [-] on the
     rocket's reference area vs Mach (numeric-only): a flat forward face (eq. 3.87),
     blunt nose joints (eq. 3.81),
@@ -103,20 +103,22 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True,
     the critical Mach number their flow is attached and subcritical, so they have no
     pressure drag (d'Alembert); eq. 3.89's rise stands for their compressibility
     drag, which the panel tables take from the critical-Mach model instead
-    (:mod:`panair.transonic`).  ``nose_joint=False`` leaves out the nose joint's drag
-    (:func:`pressure_ca` takes the nose from :func:`nose_pressure_ca`)."""
+    (:mod:`panair.transonic`).  ``nose_wave=True`` gives the nose at the front its
+    wave drag too (:func:`nose_pressure_ca`, the empirical path's :func:`pressure_ca`);
+    the panel tables have their own."""
     m = np.asarray(mach, dtype=float)
     a_ref = rocket.reference_area()
     ca = np.zeros_like(m)
     q = stagnation_ratio(m)
-    front = min(rocket.body_components(), key=lambda c: c.x)
+    front = rocket.front_component()
     r_front = 0.0 if isinstance(front, NoseCone) else float(getattr(front, "fore_radius", getattr(front, "radius", 0.0)))
     if r_front > 0.0:                       # blunt forward face (eq. 3.87, Hoerner ch. 3)
         ca += 0.85 * q * np.pi * r_front ** 2 / a_ref
     for comp in rocket.body_components():
         if isinstance(comp, NoseCone):
-            if nose_joint:
-                ca += _nose_joint_ca(comp, m, a_ref)
+            # a nose further aft (after a separation) has only its joint
+            ca += (nose_pressure_ca(comp, m, a_ref) if nose_wave and comp is front
+                   else _nose_joint_ca(comp, m, a_ref))
         elif isinstance(comp, Transition) and comp.aft_radius < comp.fore_radius:
             ca += boattail_separation_fraction(comp) * np.asarray(cd_base(m), dtype=float) \
                 * np.pi * (comp.fore_radius ** 2 - comp.aft_radius ** 2) / a_ref
@@ -212,17 +214,10 @@ def streamlined_fin_ca(fins, mach, reference_area: float) -> np.ndarray:
 
 def pressure_ca(rocket, mach) -> np.ndarray:
     """Pressure-drag CA [-] on the rocket's reference area vs Mach (numeric-only):
-    :func:`separated_pressure_ca` (square fin edges), :func:`streamlined_fin_ca`
+    :func:`separated_pressure_ca` (square fin edges, the nose's wave drag), :func:`streamlined_fin_ca`
     (other fin sections) and blunt fin trailing edges (eq. 3.94)."""
     m = np.asarray(mach, dtype=float)
-    ca = separated_pressure_ca(rocket, m, streamlined_edges=False, nose_joint=False)
-    front = min(rocket.body_components(), key=lambda c: c.x)
-    for comp in rocket.body_components():
-        if isinstance(comp, NoseCone):
-            # pointed at the front: McCoy's wave drag; a nose further aft (after a
-            # separation) only its joint
-            ca += (nose_pressure_ca(comp, m, rocket.reference_area()) if comp is front
-                   else _nose_joint_ca(comp, m, rocket.reference_area()))
+    ca = separated_pressure_ca(rocket, m, streamlined_edges=False, nose_wave=True)
     for fins in rocket.fin_sets():
         if fins.section.kind != "square":
             ca += streamlined_fin_ca(fins, m, rocket.reference_area())

@@ -90,6 +90,11 @@ class Rocket:
         """Nose cone, tubes and transitions in the given order."""
         return [c for c in self.components if isinstance(c, BodyOfRevolution)]
 
+    def front_component(self) -> BodyOfRevolution:
+        """The body component at the front (smallest ``x``): the nose, or a booster's
+        tube after a separation."""
+        return min(self.body_components(), key=lambda c: c.x)
+
     def fin_sets(self) -> list[FinSet]:
         return [c for c in self.components if isinstance(c, FinSet)]
 
