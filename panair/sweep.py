@@ -630,7 +630,9 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     m_sup = np.array(solved_sup)
     p_sup = np.array([ca_lin[int(np.argmin(np.abs(mach - m))), 0] for m in solved_sup])
     anchor_solved = []
-    if np.any(mach > m_cr) and not len(m_sup):
+    # an ogival nose rises from its own critical Mach number (McCoy), which may lie below m_cr
+    m_cr_nose, rise = nose_transonic(nose[1], nose[2]) if nose is not None else (m_cr, None)
+    if np.any(mach > min(m_cr, m_cr_nose)) and not len(m_sup):
         # a supersonic anchor for the transonic rise although the grid has none
         m_anchor = float(MACH_SUPERSONIC_MIN)
         c1, i1 = sweep_pressure(geometry, [m_anchor], np.zeros(1), sref=sref, lref=lref,
@@ -645,15 +647,15 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     lock_sets = [(m_i, int(f.count) * f.span * float(np.mean(f.chord_at(np.linspace(0, 1, 65)))) / sref)
                  for m_i, f in zip(m_cr_fins, geometry.fins)]
     # an ogival nose's own transonic drag (McCoy) in place of its share of the sonic anchor
+    # (decided on the lower of the configuration's and the nose's own critical Mach number)
     nose_model, nose_meta = None, None
-    if nose is not None and len(m_sup) and np.any((mach > m_cr) & (mach < m_sup[0])):
+    if nose is not None and len(m_sup) and np.any((mach > min(m_cr, m_cr_nose)) & (mach < m_sup[0])):
         x_end, tau, area_ratio = nose
         grid_sup = mach[mach >= MACH_SUPERSONIC_MIN] if not anchor_solved else m_sup
         share = nose_supersonic_share(geometry.body, float(m_sup[0]), x_end, sref=sref,
                                       options=supersonic_mesh_options(options, grid_sup),
                                       pressure_rule=pressure_rule)
         if share is not None:
-            m_cr_nose, rise = nose_transonic(tau, area_ratio)
             nose_model = (rise, share)
             m_cr = min(m_cr, m_cr_nose)
             nose_meta = {"model": "McCoy 1981 (MC DRAG) transonic head drag", "tau": tau,

@@ -159,3 +159,29 @@ def test_empirical_nose_drag_has_wave_drag_on_tangent_noses():
     assert head_shape_ratio(cone) == 1.0
     joint = 0.8 * np.sin(np.arctan(0.1)) ** 2
     assert np.all(nose_pressure_ca(cone, m[m < 0.9], a_ref) >= joint - 1e-12)
+
+
+def test_nose_model_decided_on_the_nose_own_critical_mach(tmp_path, monkeypatch):
+    """A grid whose only transonic point lies between the nose's critical Mach number
+    (McCoy, fineness 3: 0.902) and the configuration's gets the nose's transonic drag:
+    the configuration's critical Mach number is set above it (0.95) here, where before
+    the nose model was decided on the configuration's alone and skipped (CA(0.93) was
+    the subsonic value)."""
+    import panair.transonic as transonic
+    from model_toml import model_toml
+    from ironbark_opt.vehicle import load_rocket_geometry
+    from panair.rocket_table import rocket_table
+    path = tmp_path / "nose.toml"
+    path.write_text(model_toml("nose", calibre=0.1, nose_shape="von_karman", nose_calibres=3.0,
+                               body_calibres=10.0, cg_x=0.6))
+    rk, spec = load_rocket_geometry(path)
+    monkeypatch.setattr(transonic, "body_critical_mach", lambda cp_min: 0.95)
+    t = rocket_table(rk, spec, mach=np.array([0.3, 0.6, 0.93, 1.2]), alpha_deg=np.array([0.0, 2.0]),
+                     workers=1)
+    nose = t.metadata["nose_transonic"]
+    assert nose is not None and nose["mach_critical"] == pytest.approx(0.902, abs=1e-3)
+    _, rise = nose_transonic(1 / 3, 1.0)
+    vals = t.values("CA_pressure")[:, 0]
+    ca_p = {m: float(vals[int(np.argmin(np.abs(t.mach - m)))]) for m in (0.6, 0.93)}
+    # the rise at Mach 0.93 is McCoy's (the configuration's own has not started there)
+    assert ca_p[0.93] - ca_p[0.6] == pytest.approx(float(rise(0.93)), rel=0.05)
