@@ -322,7 +322,7 @@ def _fin_sides(panels: PanelSet, keep, cen, nrm):
     fin_r = _fin_index(panels, keep)
     planes, x0, tol = _fin_planes(panels, keep, cen, fins)
     partner = _partners(planes, tol)
-    recv = _receiver_sides(planes, x0, tol, partner, cen, nrm, fin_r)
+    recv = _receiver_sides(planes, x0, tol, partner, cen, nrm, fin_r, _paired(panels, planes, tol))
     for k in range(len(fins)):
         own = (fin_r == k) & (recv[k] != 0)
         src_fin[own] = k
@@ -365,17 +365,37 @@ def _partners(planes, tol) -> np.ndarray:
     return own | _coplanar(planes, planes, tol) if THIN_WING else own
 
 
-def _receiver_sides(planes, x0, tol, partner, cen_r, nrm_r, fin_r, mirrored=False) -> np.ndarray:
+def _paired(panels: PanelSet, planes, tol) -> np.ndarray:
+    """(n_fins,) True where a fin has a coplanar partner in the full model (with
+    THIN_WING only): another fin of the model in its plane or, in a half model
+    (``panels.symmetric``), a mirror twin of one (x, -y, z), which is where a half
+    model's partners are (no fin lies in its mirror plane, so two fins of one plane are
+    never both in the half)."""
+    if not THIN_WING:
+        return np.zeros(len(planes), dtype=bool)
+    paired = np.any(_coplanar(planes, planes, tol) & ~np.eye(len(planes), dtype=bool), axis=1)
+    if panels.symmetric:
+        flip = np.array([1.0, -1.0, 1.0])
+        paired |= np.any(_coplanar(planes, [(c * flip, e * flip) for c, e in planes], tol), axis=1)
+    return paired
+
+
+def _receiver_sides(planes, x0, tol, partner, cen_r, nrm_r, fin_r, paired) -> np.ndarray:
     """The side of each fin's plane (n_fins, n_r) that receivers (centroids
     ``cen_r``, normals ``nrm_r``, ``fin_r`` the fin they are a panel of or -1) are
     on, as :func:`_fin_sides`: a face (|n . e_t| > 0.5) of fin g with partner[k, g]
     (the fin itself or a coplanar one) the side it faces; a panel of no fin at or
     aft of fin k's leading x, in its half of the cross-section or, if fin k has a
-    coplanar partner, anywhere (the plane through both fins and the axis splits the
-    body, e.g. a wing on a body), the side of the plane it is on (0 within tol of
-    the plane); everything else 0.  ``mirrored``: the receivers are mirror images
-    and partner[k, g] means g's twin (:func:`_mirror_sides`; a half model has no fin
-    in the mirror plane, so any such partner is another fin)."""
+    coplanar partner in the full model (``paired[k]``, :func:`_paired`), anywhere (the
+    plane through both fins and the axis splits the body, e.g. a wing on a body), the
+    side of the plane it is on (0 within tol of the plane); everything else 0.  For
+    mirror images of receivers (:func:`_mirror_sides`) partner[k, g] means g's twin.
+    ``paired`` is the full model's in both cases: a half model's fin has its partner
+    among the twins, and before session 17 the receivers of the half model itself
+    took it from ``partner`` (none there), so the body in the half of the cross-section
+    away from the fin was not split by the wing's plane as in the full model
+    (tests/unit/test_panair_mirror.py with THIN_WING, Mach 1.3: half / full 1e-3 ...
+    6e-3 apart, to rounding with it)."""
     recv = np.zeros((len(planes), len(cen_r)))
     body = fin_r < 0
     g = np.maximum(fin_r, 0)
@@ -384,8 +404,7 @@ def _receiver_sides(planes, x0, tol, partner, cen_r, nrm_r, fin_r, mirrored=Fals
         sided = ~body & partner[k, g] & (np.abs(face) > 0.5)
         radial = c0 * np.array([0.0, 1.0, 1.0])
         radial /= max(float(np.linalg.norm(radial)), 1e-300)
-        paired = bool(np.any(partner[k] if mirrored else np.delete(partner[k], k)))
-        half = (cen_r @ radial > tol) | (paired & (cen_r @ radial < -tol))
+        half = (cen_r @ radial > tol) | (paired[k] & (cen_r @ radial < -tol))
         near = body & half & (cen_r[:, 0] >= x0[k])
         dist = (cen_r - c0) @ e_t
         across = np.where(np.abs(dist) > tol, np.sign(dist), 0.0)
@@ -425,7 +444,7 @@ def _mirror_sides(panels: PanelSet, keep, cen, nrm, fin_r, cen_r=None, nrm_r=Non
     cen_r = cen if cen_r is None else cen_r
     nrm_r = nrm if nrm_r is None else nrm_r
     return _receiver_sides(planes, x0, tol, partner, cen_r * flip, nrm_r * flip, fin_r,
-                           mirrored=True)
+                           _paired(panels, planes, tol))
 
 
 def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
@@ -650,11 +669,12 @@ class SupersonicSolver:
             flat, cen, nrm = (np.concatenate([a, b]) for a, b in
                               ((flat, fl_w), (cen, cen_w), (nrm, nrm_w)))
             scale = np.concatenate([scale, scale_w])
-            recv_sheet = None               # the sheet faces: their own fin's side only
-            if THIN_WING:                   # ... and a coplanar partner's
-                planes, x0, tol = _fin_planes(panels, keep, self._cen_t, fins)
-                recv_sheet = _receiver_sides(planes, x0, tol, _partners(planes, tol), cen_w,
-                                             nrm_w, sheets.fin)
+            # the sheet faces receive from their own fin's side (with THIN_WING also a
+            # coplanar partner's), sided as the panels (the same planes, fin_plane's
+            # orientation: their own sheets.side to the last bit without THIN_WING)
+            planes, x0, tol = _fin_planes(panels, keep, self._cen_t, fins)
+            recv_sheet = _receiver_sides(planes, x0, tol, _partners(planes, tol), cen_w, nrm_w,
+                                         sheets.fin, _paired(panels, planes, tol))
             sides = sheet_sides(sides, sheets, recv_sheet)
             if recv_m is not None:
                 recv_m = np.hstack([recv_m, _mirror_sides(panels, keep, self._cen_t, self._nrm_t,
