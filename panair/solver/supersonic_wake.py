@@ -79,9 +79,26 @@ def fin_plane(fin_centroids):
     panel centroids (the smallest singular direction).  ``full_matrices=False``: the same
     right singular vectors (bitwise, checked on this LAPACK) without the (n, n) left
     ones, which took ~45 ms a call for a fin's ~1000 panels (ten calls per supersonic
-    Mach number of the Kestrel)."""
+    Mach number of the Kestrel).
+
+    The normal is oriented by the geometry, not by LAPACK's sign: along the roll
+    direction e_x x c0 at the fin's centroid (for a fin whose centroid is on the axis,
+    its largest y-z component positive).  The planes are computed both in physical
+    space (the wake and diaphragm sheets' faces, :func:`wake_sheets`) and in the
+    solver's scaled space (x / B, :func:`panair.solver.supersonic._fin_planes`), and the
+    sides of the sheets' faces must mean the same there: the singular vector's sign
+    alone flipped between the two for some Mach numbers (measured on 3 or 4 fins
+    rolled 0 deg and 3 rolled 17 deg, Mach 1.2 ... 3: one fin in three or four, at
+    Mach 2.5 all four), which sided a wake sheet's faces opposite to its fin's."""
     c0 = fin_centroids.mean(axis=0)
-    return c0, np.linalg.svd(fin_centroids - c0, full_matrices=False)[2][2]
+    e_t = np.linalg.svd(fin_centroids - c0, full_matrices=False)[2][2]
+    roll = np.array([0.0, -c0[2], c0[1]])
+    extent = float(np.ptp(fin_centroids, axis=0).max())
+    if np.linalg.norm(roll) > 1e-6 * extent and abs(float(e_t @ roll)) > 1e-6 * np.linalg.norm(roll):
+        s = float(e_t @ roll)
+    else:
+        s = float(e_t[1:][np.argmax(np.abs(e_t[1:]))])
+    return c0, (e_t if s >= 0 else -e_t)
 
 
 def wake_sheets(panels, keep, fins) -> WakeSheets | None:
@@ -226,18 +243,15 @@ def sheet_geometry(sheets: WakeSheets, B: float):
     return flat, cen, nrm, np.minimum(np.sqrt(np.maximum(area, 1e-300)), shortest)
 
 
-def sheet_sides(sides, sheets: WakeSheets, recv_sheet=None):
+def sheet_sides(sides, sheets: WakeSheets, recv_sheet):
     """The fin-side assignment (recv, src_fin, src_side) of the kept panels extended
-    by the sheet faces: a face acts on, and receives from, its own side of its fin's
-    plane only (as the fin's faces); ``recv_sheet`` (n_fins, 2 w): the faces' sides
-    as receivers if given (:func:`panair.solver.supersonic._receiver_sides`, which
-    also sides them for a coplanar fin), else their own fin's only."""
+    by the sheet faces: a face acts on its own side of its fin's plane only (as the
+    fin's faces, ``sheets.side``) and receives as ``recv_sheet`` (n_fins, 2 w) says
+    (:func:`panair.solver.supersonic._receiver_sides`: its own fin's side, with
+    THIN_WING also a coplanar fin's; both in the orientation of
+    :func:`fin_plane`)."""
     recv, src_fin, src_side = sides
-    rw = recv_sheet
-    if rw is None:
-        rw = np.zeros((len(recv), len(sheets.fin)))
-        rw[sheets.fin, np.arange(len(sheets.fin))] = sheets.side
-    return (np.hstack([recv, rw]), np.concatenate([src_fin, sheets.fin]),
+    return (np.hstack([recv, recv_sheet]), np.concatenate([src_fin, sheets.fin]),
             np.concatenate([src_side, sheets.side]))
 
 

@@ -150,3 +150,33 @@ def test_sheet_stops_where_the_body_grows_past_it():
     print(f"\ninnermost strip of the sheet ends at: {ends}")
     assert ends["cylinder"] == pytest.approx(10.0)
     assert X_TE < ends["flare"] <= 8.5
+
+
+@pytest.mark.parametrize("count, roll_deg", [(3, 0.0), (4, 0.0), (3, 17.0), (4, 45.0)])
+def test_sheet_faces_are_sided_as_their_fins(count, roll_deg):
+    """A wake face looks to the side ``sheets.side`` of its fin's plane (physical space,
+    where the sheets are built) and the solver sides the panels by the same plane in its
+    scaled space (x / B): both must be one orientation.  fin_plane orients the normal by
+    the geometry; with LAPACK's sign (before session 17) the two disagreed for one fin in
+    three or four (3 and 4 fins rolled 0 deg, 3 rolled 17 deg) at some of these Mach
+    numbers (4 rolled 0 deg, Mach 2.5: all four), and the faces took sources from the side
+    they do not face."""
+    from panair.solver import supersonic as sup
+    from panair.solver.supersonic_wake import sheet_geometry, wake_sheets
+    body = BodyGeometry(np.array([0.0, 2.84, 12.0]), np.array([0.0, 0.5, 0.5]))
+    geom = RocketGeometry(body, (FinGeometry(count, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08,
+                                             roll=np.radians(roll_deg)),))
+    opt = MeshOptions(n_theta=16, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
+    for mach in (1.2, 1.6, 2.0, 2.5, 3.0):
+        p = build_panels(mesh_rocket(geom, options=opt.for_mach(mach)))
+        keep = p.integrate.copy()
+        b = math.sqrt(mach**2 - 1.0)
+        _, cen, _, _ = p.geometry(1.0 / b)
+        fins = np.unique(p.network[p.wake_upper[~p.wake_at_base]])
+        sheets = wake_sheets(p, keep, fins)
+        _, cen_w, nrm_w, _ = sheet_geometry(sheets, b)
+        planes, x0, tol = sup._fin_planes(p, keep, cen[keep], fins)
+        own = np.eye(len(fins), dtype=bool)
+        recv = sup._receiver_sides(planes, x0, tol, own, cen_w, nrm_w, sheets.fin,
+                                   np.zeros(len(fins), bool))
+        np.testing.assert_array_equal(recv[sheets.fin, np.arange(len(sheets.fin))], sheets.side)
