@@ -130,7 +130,7 @@ def _stations(geometry, options):
 
 def coincidence_phase(geometry, options, mach: float) -> float | None:
     """The smallest phase [panel lengths] over the runs of ``geometry``'s body meshed
-    with ``options`` at Mach ``mach`` (None: no run the Mach cone crosses)."""
+    with ``options`` at Mach ``mach`` (None: no run the Mach cone crosses there and back)."""
     xs, rs = _stations(geometry, options)
     d = [r.delta for r in coincidence_runs(xs, rs, mach, options.scaled("n_theta"))
          if r.delta is not None]
@@ -141,7 +141,8 @@ def coincidence_free_options(geometry, options, mach: float, band: float | None 
     """``options`` when every run of its body mesh has a phase of at least ``band``
     at Mach ``mach``; else the options with the body panel length nearest the
     original (the finer first on a tie) whose smallest phase is at least
-    ``TARGET_PHASE`` (the largest smallest phase of the candidates when none is):
+    ``TARGET_PHASE`` or that has no run the Mach cone crosses twice (the largest
+    smallest phase of the candidates when none is):
     candidates 0.70 ... 1.15 x ``body_spacing`` in steps of 0.5 %.  ``band`` [panel
     lengths]: None for :data:`COINCIDENCE_BAND`; ``math.inf`` always searches."""
     band = COINCIDENCE_BAND if band is None else band
@@ -149,14 +150,13 @@ def coincidence_free_options(geometry, options, mach: float, band: float | None 
     if delta is None or delta >= band:
         return options
     s0 = options.body_spacing
-    factors = sorted(np.round(np.arange(0.70, 1.1501, 0.005), 6), key=lambda f: (round(abs(math.log(f)), 9), f > 1))
+    factors = sorted(np.round(np.arange(0.70, 1.1501, 0.005), 6),
+                     key=lambda f: (round(abs(math.log(f)), 9), f > 1))
     best, best_delta = options, delta
     for f in factors:
         opt = replace(options, body_spacing=s0 * float(f))
         d = coincidence_phase(geometry, opt, mach)
-        if d is None:
-            continue
-        if d >= TARGET_PHASE:
+        if d is None or d >= TARGET_PHASE:      # None: no run the Mach cone crosses twice
             return opt
         if d > best_delta:
             best, best_delta = opt, d
