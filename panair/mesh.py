@@ -365,30 +365,6 @@ class MeshOptions:
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
                        separated_transitions=True, sharp_le_axial=True)
 
-    def coincidence_free(self, radius: float, mach: float) -> "MeshOptions":
-        """These options with the body panel length chosen so that no collocation point
-        lies on a Mach cone tangent to the transverse edge of the panel diametrically
-        opposite it, at Mach ``mach`` [-], on a body of largest radius ``radius`` [m].
-
-        Why (measured, tests/unit/test_panair_supersonic_coincidence.py): the normal
-        mass flux of a constant-strength source panel's transverse edge is singular
-        like 1 / sqrt(s) where a receiver's upstream Mach cone is tangent to it (s
-        past tangency; the step in source strength at the edge, not the flow), and a
-        cylinder's collocation points are tangent to the opposite panels' edges where
-        B d = (n + 1/2) L (L the panel length, d = 2 r cos(pi / n_theta) the distance
-        between opposite flat-panel centroids): the causal solution then amplifies an
-        odd-even sawtooth along the cylinder (TR R-100 von Karman body, L = 0.389 cal:
-        refused at Mach 1.3925-1.40, CN(2 deg) -6 % at 1.39 and 1.405).  Here L = B d /
-        k, k the next integer above B d / L: the edges' tangencies fall on the panel
-        edges, half a panel from every collocation point (the same body, L = 0.33 cal:
-        CN(2 deg) at Mach 1.38 / 1.40 / 1.42 0.1245 / 0.1227 / 0.1210).  Our rule,
-        used to re-mesh a Mach number the solver refused (:func:`panair.sweep.sweep_pressure`)."""
-        d = 2.0 * radius * math.cos(math.pi / self.scaled("n_theta"))
-        length = self.body_spacing * 2.0 * radius / self.refine
-        bd = math.sqrt(mach * mach - 1.0) * d
-        k = math.floor(bd / length) + 1
-        return replace(self, body_spacing=bd / k * self.refine / (2.0 * radius))
-
 
 def _chord_stations(n, clustering):
     """Chordwise stations in [0, 1]: blend of uniform and cosine spacing."""

@@ -55,10 +55,14 @@ than the Mach cone, non-physical pressures at the lifting angles) is solved
 by the local-inclination method instead (tangent cone, tangent wedge,
 Prandtl-Meyer; :mod:`panair.solver.local_inclination`), listed in the
 metadata ``mach_local_inclination``, after one more try on a body mesh free of the
-cross-body Mach-cone coincidence at that Mach number (:func:`_remesh_refused`; the
-Mach numbers it solves listed in ``mach_remeshed``).  The other exception is recorded: a supersonic angle of attack above the largest one
-linear theory solves (it breaks at large angles: expansion past vacuum)
-continues the last solved one with Jorgensen's potential-flow shape
+cross-body Mach-cone coincidence at that Mach number (:func:`_remesh_refused`).  A
+supersonic Mach number whose shared mesh is near that coincidence (a run of equal
+body panels with a phase below :data:`panair.coincidence.COINCIDENCE_BAND`; there the
+solution passes every check but is off) is solved on its own body spacing from the
+start; the Mach numbers solved on their own mesh are listed in ``mach_remeshed``
+(their spacings in ``mach_remeshed_body_spacing_cal``).  The other exception is
+recorded: a supersonic angle of attack above the largest one linear theory solves
+(it breaks at large angles: expansion past vacuum) continues the last solved one with Jorgensen's potential-flow shape
 (:func:`_solve_one`); those angles are listed per Mach number in the
 metadata ``alpha_deg_extrapolated`` and ``ironbark aero build`` warns.
 A fin leading edge that is sonic for linear theory (its pressure singular and
@@ -86,6 +90,7 @@ from ironbark_opt.errors import InputError, SolverError
 from .a502 import find_panair, run_panair
 from .bridge import transonic_bridge
 from .mach_pool import MachPool
+from .coincidence import coincidence_free_options
 from .mesh import MeshOptions, RocketGeometry, mesh_rocket
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
 from .solver.panels import mirror_plane
@@ -170,6 +175,8 @@ def _solve_one(args):
     at or below a solved angle is raised."""
     panels, mach, alphas, sref, lref, xref, rule = args[:7]
     body_mask = args[7] if len(args) > 7 else None
+    if isinstance(panels, _OwnMesh):
+        panels = panels.build()
     try:
         # every angle is in the x-z plane: a mirror-symmetric full model solves half its panels
         solver = make_solver(panels, mach, sref=sref, lref=lref, xref=xref, pressure_rule=rule,
@@ -219,33 +226,47 @@ def _linear_how(solver) -> str:
     return "linear-sonic-le" if getattr(solver, "sonic_le_out_of_range", False) else "linear"
 
 
+class _OwnMesh:
+    """A supersonic Mach number's own mesh (``options``, :mod:`panair.coincidence`),
+    built where its job runs (meshing is cheap next to the supersonic influence matrix,
+    which is per Mach number anyway); ``n`` [-] the shared mesh's panel count, for
+    :func:`_job_cost`."""
+
+    def __init__(self, geometry, options, symmetric, n):
+        self.geometry, self.options, self.symmetric, self.n = geometry, options, symmetric, n
+
+    def build(self):
+        panels = build_panels(mesh_rocket(self.geometry, symmetric=self.symmetric,
+                                          options=self.options), symmetric=self.symmetric)
+        mirror_plane(panels)
+        return panels
+
+
 def _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, rule, results,
-                    extrapolated, cp_min, method, ckpt) -> list:
-    """Once more, on a body mesh free of the cross-body Mach-cone coincidence at that
-    Mach number (:meth:`MeshOptions.coincidence_free`), every supersonic Mach number
-    linear theory refused on the sweep's shared mesh (method "local-inclination");
-    its results replaced (and checkpointed) where linear theory solves it there.
-    Returns those Mach numbers (sorted).  A mesh the rule leaves unchanged, or
-    panels steeper than the Mach cone (no body spacing helps), are not retried."""
-    out = []
-    radius = float(np.max(geometry.body.r))
-    for m in sorted(m for m, how in method.items() if how == "local-inclination"):
-        opt_m = opt_sup.coincidence_free(radius, m)
+                    extrapolated, cp_min, method, spacing, ckpt) -> None:
+    """Once more, on a body mesh free of the cross-body Mach-cone coincidence
+    (:func:`panair.coincidence.coincidence_free_options` with no band: the candidate
+    spacing whose runs' smallest phase is largest), every supersonic Mach number linear
+    theory refused on the sweep's shared mesh (method "local-inclination"; one solved
+    on its own mesh already is not retried); its results replaced (and checkpointed)
+    where linear theory solves it there, its body spacing [calibres] entered in
+    ``spacing``.  Panels steeper than the Mach cone (no body spacing helps) stay
+    refused."""
+    refused = (m for m, how in method.items() if how == "local-inclination" and m not in spacing)
+    for m in sorted(refused):
+        opt_m = coincidence_free_options(geometry, opt_sup, m, band=math.inf)
         if opt_m == opt_sup:
             continue
-        panels = build_panels(mesh_rocket(geometry, symmetric=symmetric, options=opt_m),
-                              symmetric=symmetric)
-        mirror_plane(panels)
         try:
-            mm, arr, extra, cpm, how = _solve_one((panels, m, alpha, sref, lref, xref, rule))
+            job = (_OwnMesh(geometry, opt_m, symmetric, 0), m, alpha, sref, lref, xref, rule)
+            mm, arr, extra, cpm, how = _solve_one(job)
         except SolverError:
             continue
         if how == "local-inclination":
             continue
         results[mm], extrapolated[mm], cp_min[mm], method[mm] = arr, extra, cpm, how
-        ckpt.save(mm, arr, extra, cpm, how)
-        out.append(mm)
-    return out
+        spacing[mm] = opt_m.body_spacing
+        ckpt.save(mm, arr, extra, cpm, how, opt_m.body_spacing)
 
 
 def _local_inclination(panels, mach, alphas, sref, lref, xref):
@@ -299,24 +320,28 @@ class _Checkpoint:
         try:
             with np.load(self._path(mach)) as z:
                 cpm = float(z["cp_min"]) if np.isfinite(z["cp_min"]) else None
+                spacing = float(z["body_spacing"]) if "body_spacing" in z.files else math.nan
                 return (np.array(z["coefficients"]), [float(a) for a in z["extrapolated"]], cpm,
-                        str(z["method"]))
+                        str(z["method"]), None if math.isnan(spacing) else spacing)
         except (OSError, ValueError, KeyError):
             return None                   # a damaged file is solved again
 
-    def save(self, mach, arr, extra, cpm, how):
+    def save(self, mach, arr, extra, cpm, how, spacing=None):
+        """``spacing``: the body spacing [calibres] of a Mach number solved on its own
+        mesh (None: the shared one)."""
         if self.folder is None:
             return
         import os
         self.folder.mkdir(parents=True, exist_ok=True)
         tmp = self._path(mach).with_suffix(".tmp.npz")
         np.savez(tmp, coefficients=arr, extrapolated=np.asarray(extra, float),
-                 cp_min=np.nan if cpm is None else cpm, method=np.array(how))
+                 cp_min=np.nan if cpm is None else cpm, method=np.array(how),
+                 body_spacing=np.nan if spacing is None else spacing)
         os.replace(tmp, self._path(mach))
 
 
 #: bump when the solver's numbers change, so old checkpoints are not reused
-CHECKPOINT_VERSION = 3
+CHECKPOINT_VERSION = 4
 
 
 def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float,
@@ -396,11 +421,14 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     extrapolated: dict[float, list] = {}
     cp_min: dict[float, float] = {}
     method: dict[float, str] = {}
+    spacing: dict[float, float] = {}     # Mach -> body spacing [cal] of its own mesh
     ckpt = _Checkpoint(checkpoint_dir, nets, nets_sup, alpha, pressure_rule, use_panair)
     for m in list(builtin) + list(external):
         hit = ckpt.load(float(m))
         if hit is not None:
-            results[float(m)], extrapolated[float(m)], cp_min[float(m)], method[float(m)] = hit
+            results[float(m)], extrapolated[float(m)], cp_min[float(m)], method[float(m)], sp = hit
+            if sp is not None:
+                spacing[float(m)] = sp
     builtin_all = builtin
     builtin = np.array([m for m in builtin if float(m) not in results])
     external_all = external
@@ -417,9 +445,21 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
         for f in geometry.fins:
             pad = max(2.0 * f.thickness, 0.05 * f.root_chord)
             body_mask &= ~((x_c > f.x_root - pad) & (x_c < f.x_root + f.root_chord + pad))
-    jobs = [(panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
+    # a supersonic Mach number whose shared mesh is near a cross-body Mach-cone
+    # coincidence is solved on its own body spacing (panair.coincidence)
+    own = {float(m): o for m in builtin if m >= MACH_SUPERSONIC_MIN
+           for o in [coincidence_free_options(geometry, opt_sup, float(m))] if o != opt_sup}
+    jobs = [(_OwnMesh(geometry, own[float(m)], symmetric, panels_sup.n) if float(m) in own
+             else panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
              xref, pressure_rule, None if m >= MACH_SUPERSONIC_MIN else body_mask)
             for m in builtin]
+
+    def store(m, arr, extra, cpm, how):
+        results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
+        if m in own:
+            spacing[m] = own[m].body_spacing
+        ckpt.save(m, arr, extra, cpm, how, spacing.get(m))
+
     # longest first (supersonic: more panels and four potential evaluations per
     # matrix), so the last Mach numbers to finish are short ones and the workers
     # end together; results are keyed by Mach number, the order changes nothing else
@@ -440,8 +480,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 done = run_chunks(ex, _solve_one, [(job,) for job in jobs], label="panel",
                                   on_chunk=lambda i, k: bar.update() if bar else None)
             for m, arr, extra, cpm, how in done:
-                results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-                ckpt.save(m, arr, extra, cpm, how)
+                store(m, arr, extra, cpm, how)
         elif pool is not None or (workers > 1 and len(jobs) > 1):
             # Mach numbers in parallel (panair.mach_pool: one BLAS thread per worker, the
             # costliest first), in a pool shared with other sweeps or this sweep's own;
@@ -451,8 +490,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 try:
                     for fut in as_completed(futures):
                         m, arr, extra, cpm, how = fut.result()
-                        results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-                        ckpt.save(m, arr, extra, cpm, how)
+                        store(m, arr, extra, cpm, how)
                         if bar:
                             bar.update()
                 finally:
@@ -461,8 +499,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
         else:
             for job in jobs:
                 m, arr, extra, cpm, how = _solve_one(job)
-                results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-                ckpt.save(m, arr, extra, cpm, how)
+                store(m, arr, extra, cpm, how)
                 if bar:
                     bar.update()
         for m in external:
@@ -475,8 +512,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     finally:
         if bar:
             bar.close()
-    remeshed = _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, pressure_rule,
-                               results, extrapolated, cp_min, method, ckpt)
+    _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, pressure_rule,
+                    results, extrapolated, cp_min, method, spacing, ckpt)
     # blunt fin leading edges: meshed as wedges without axial force where linear
     # theory cannot solve them (supersonic meshes); their drag is Niskanen's
     sharpened = [float(m) for m in builtin_all if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0
@@ -505,7 +542,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "pressure_rule": pressure_rule,
             "mach_local_inclination": sorted(m for m, how in method.items()
                                              if how == "local-inclination"),
-            "mach_remeshed": remeshed,
+            "mach_remeshed": sorted(spacing),
+            "mach_remeshed_body_spacing_cal": {f"{m:g}": spacing[m] for m in sorted(spacing)},
             "mach_sonic_leading_edge": sorted(m for m, how in method.items()
                                               if how == "linear-sonic-le"),
             "body_cp_min_incompressible": next((cp_min[m] for m in sorted(cp_min)

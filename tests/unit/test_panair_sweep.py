@@ -21,6 +21,14 @@ def _bf():
     return RocketGeometry(body, fins, "bf30mm")
 
 
+def _solved_mesh(options, info, mach):
+    """The supersonic mesh options the sweep solved ``mach`` on: ``options``, or its own
+    body spacing near a cross-body Mach-cone coincidence (panair.coincidence)."""
+    from dataclasses import replace
+    own = info["mach_remeshed_body_spacing_cal"].get(f"{mach:g}")
+    return options if own is None else replace(options, body_spacing=own)
+
+
 def test_bridge_is_monotone_c1_and_exact_at_nodes():
     m = np.array([0.6, 0.8, 0.9, 1.2, 1.5, 2.0])
     v = np.array([0.01, 0.012, 0.02, 0.30, 0.25, 0.20])
@@ -52,7 +60,8 @@ def test_sweep_matches_direct_solve_and_parallel():
 def test_supersonic_mach_numbers_use_the_finer_fin_strips():
     """MeshOptions.for_mach: n_span x supersonic_span_factor above Mach 1; the
     sweep solves each Mach number on its regime's mesh (same numbers as a
-    direct solve on that mesh)."""
+    direct solve on that mesh; Mach 1.6 on its own body spacing: its phase on this
+    coarse mesh: 0.11)."""
     assert COARSE.for_mach(0.8) is COARSE
     sup = COARSE.for_mach(1.5)
     assert sup.n_span == 6 and sup.supersonic_span_factor == 1.0 and sup.for_mach(2.0) is sup
@@ -64,7 +73,10 @@ def test_supersonic_mach_numbers_use_the_finer_fin_strips():
     p_sub = build_panels(mesh_rocket(g, symmetric=True, options=COARSE), symmetric=True)
     p_sup = build_panels(mesh_rocket(g, symmetric=True, options=sup), symmetric=True)
     assert info["panels"] == p_sub.n and info["panels_supersonic"] == p_sup.n > p_sub.n
-    direct = make_solver(p_sup, 1.6, sref=np.pi * 0.015**2, lref=0.03, xref=0.15).solve(alpha)
+    assert info["mach_remeshed"] == [1.6]
+    p_own = build_panels(mesh_rocket(g, symmetric=True, options=_solved_mesh(sup, info, 1.6)),
+                         symmetric=True)
+    direct = make_solver(p_own, 1.6, sref=np.pi * 0.015**2, lref=0.03, xref=0.15).solve(alpha)
     np.testing.assert_allclose(c["CN"][1], [r.CN for r in direct], rtol=1e-10, atol=1e-12)
 
 
@@ -235,7 +247,7 @@ def test_blunt_fin_leading_edges_solve_supersonic():
     c, info = sweep_pressure(g, [0.6, 2.0], np.radians([0.0, 2.0]), sref=sref, lref=0.1,
                              xref=0.6, options=opt, workers=1, progress=False)
     assert info["mach_blunt_le_model"] == [2.0]
-    sup = opt.for_mach(2.0)
+    sup = _solved_mesh(opt.for_mach(2.0), info, 2.0)
     nets = mesh_rocket(g, symmetric=True, options=sup)
     fin = next(n for n in nets if n.name == "fin0")
     p = build_panels(nets, symmetric=True)
