@@ -167,7 +167,7 @@ def _merged_metadata(first: dict, others) -> dict:
     for o in others:
         for k in ("panels", "panels_supersonic"):
             meta[k] = int(meta.get(k, 0)) + int(o.get(k, 0))
-        for k in ("mach_local_inclination", "mach_sonic_leading_edge", "mach_remeshed"):
+        for k in ("mach_local_inclination", "mach_sonic_leading_edge", "mach_remeshed", "mach_cp_clipped"):
             meta[k] = sorted(set(meta.get(k, [])) | set(o.get(k, [])))
         extra = {m: list(a) for m, a in meta.get("alpha_deg_extrapolated", {}).items()}
         for m, angles in o.get("alpha_deg_extrapolated", {}).items():

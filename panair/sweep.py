@@ -68,7 +68,11 @@ metadata ``alpha_deg_extrapolated`` and ``ironbark aero build`` warns.
 A fin leading edge that is sonic for linear theory (its pressure singular and
 beyond stagnation there, the load integrable) keeps linear theory's solution;
 such Mach numbers are listed in ``mach_sonic_leading_edge``
-(:func:`panair.solver.supersonic._sonic_leading_edge`).
+(:func:`panair.solver.supersonic._sonic_leading_edge`).  Out-of-range pressures confined
+to a few panels (a local singularity: at most ``CLIP_AREA_MAX`` of the wetted area with at
+most ``CLIP_LOAD_MAX`` x the tolerated load, :mod:`panair.solver.supersonic`) are clipped
+to vacuum / stagnation and the solution kept; those Mach numbers are listed in
+``mach_cp_clipped``.
 
 Numeric-only.
 """
@@ -220,10 +224,13 @@ def _job_cost(job) -> float:
 
 
 def _linear_how(solver) -> str:
-    """The method of a linear solution: "linear", or "linear-sonic-le" where a fin
+    """The method of a linear solution: "linear", with "-sonic-le" where a fin
     leading edge is sonic for linear theory and its pressures went out of range
-    (kept in the forces; :func:`panair.solver.supersonic._sonic_leading_edge`)."""
-    return "linear-sonic-le" if getattr(solver, "sonic_le_out_of_range", False) else "linear"
+    (kept in the forces; :func:`panair.solver.supersonic._sonic_leading_edge`) and
+    "-clipped" where a local singularity's pressures were clipped
+    (:data:`panair.solver.supersonic.CLIP_AREA_MAX`)."""
+    return ("linear" + ("-sonic-le" if getattr(solver, "sonic_le_out_of_range", False) else "")
+            + ("-clipped" if getattr(solver, "cp_clipped", False) else ""))
 
 
 class _OwnMesh:
@@ -545,7 +552,8 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "mach_remeshed": sorted(spacing),
             "mach_remeshed_body_spacing_cal": {f"{m:g}": spacing[m] for m in sorted(spacing)},
             "mach_sonic_leading_edge": sorted(m for m, how in method.items()
-                                              if how == "linear-sonic-le"),
+                                              if how.startswith("linear-sonic-le")),
+            "mach_cp_clipped": sorted(m for m, how in method.items() if how.endswith("-clipped")),
             "body_cp_min_incompressible": next((cp_min[m] for m in sorted(cp_min)
                                                 if cp_min[m] is not None), None)}
     return coeffs, info

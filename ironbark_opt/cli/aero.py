@@ -200,6 +200,7 @@ def _save(table, rk, stem, ckpt, label: str) -> tuple[dict, str]:
     result = {"table_csv": str(csv_path), "table_json": str(json_path), "panels": md["panels"],
               "panels_supersonic": n_sup, "alpha_deg_extrapolated": extrapolated,
               "mach_local_inclination": inclination, "mach_sonic_leading_edge": sonic_le,
+              "mach_cp_clipped": md.get("mach_cp_clipped", []),
               "reference_area_m2": rk.reference_area(), "mach_critical": md.get("mach_critical"),
               "reference_length_m": 2.0 * rk.reference_radius(), "moment_reference_x_m": 0.0}
     human = (f"{label}wrote {csv_path} and {json_path}: {len(table.mach)} Mach x {len(table.alpha)} alpha, "
@@ -221,8 +222,14 @@ def method_warnings(md: dict, label: str = "") -> tuple:
     if inclination:
         warnings.warn(f"{label}linear supersonic theory has no solution at Mach "
                       + ", ".join(f"{m:g}" for m in inclination)
-                      + " (a surface steeper than the Mach cone): those Mach numbers use the local-inclination "
-                        "method (tangent cone / tangent wedge, no fin-body carry-over; less accurate)")
+                      + " (panels steeper than the Mach cone, or non-physical pressure beyond a local "
+                        "singularity): those Mach numbers use the local-inclination method (tangent cone / "
+                        "tangent wedge, no fin-body carry-over; less accurate)")
+    clipped = md.get("mach_cp_clipped", [])
+    if clipped:
+        warnings.warn(f"{label}linear supersonic theory's pressure at a local singularity (a fin tip's "
+                      "corners, a near-sonic edge) clipped to vacuum / stagnation at Mach "
+                      + ", ".join(f"{m:g}" for m in clipped))
     sonic_le = md.get("mach_sonic_leading_edge", [])
     if sonic_le:
         warnings.warn(f"{label}a fin leading edge is sonic at Mach " + ", ".join(f"{m:g}" for m in sonic_le)

@@ -82,7 +82,8 @@ def build_parallel(doc, rocket, mach, alpha_deg, out, *, workers: int, refine: f
     result = {**written["stack"], "configurations": written, "parallel_boosters": info,
               "interference_modelled": False, "interference": INTERFERENCE_NOTE,
               "alpha_deg_extrapolated": extrapolated, "mach_local_inclination": inclination,
-              "mach_sonic_leading_edge": sonic_le, "mach": np.asarray(mach, float), "peak_mach_estimate": peak,
+              "mach_sonic_leading_edge": sonic_le, "mach_cp_clipped": stack.metadata.get("mach_cp_clipped", []),
+              "mach": np.asarray(mach, float), "peak_mach_estimate": peak,
               "alpha_deg": np.degrees(stack.alpha), "mach_critical": stack.metadata.get("mach_critical"),
               "build_time_s": build_s}
     human = "\n".join(

@@ -221,7 +221,14 @@ def test_sonic_fin_leading_edge_solves_linearly(monkeypatch):
           f"xcp {-cm[1] / cn[1]:.3f} vs {ref[0][1]:.3f}/{ref[1][1]:.3f} cal")
     assert cn[1] == pytest.approx(ref[0][0], rel=0.03)
     assert abs(-cm[1] / cn[1] - ref[0][1]) < 0.1
-    # the same solution without the classification: reported non-physical (before)
+    # the same solution without the classification: its edge pressures are a local
+    # singularity, clipped (CLIP_AREA_MAX), which takes the edge's integrable load off
     monkeypatch.setattr(sup, "_sonic_leading_edge", lambda *a: np.zeros(len(flagged), bool))
+    s = make_solver(p, 1.2, sref=sref, lref=lref)
+    r = s.solve(alphas[1])[0]
+    print(f"unclassified, clipped: CN(2 deg) {r.CN:.4f}")
+    assert s.cp_clipped and r.CN < cn[1]
+    # ... and without the clipping either: reported non-physical (before session 17)
+    monkeypatch.setattr(sup, "CLIP_AREA_MAX", -1.0)
     with pytest.raises(SolverError, match="non-physical surface pressure"):
         make_solver(p, 1.2, sref=sref, lref=lref).solve(alphas[1])
