@@ -276,6 +276,11 @@ class RocketGeometry:
         return replace(self, fins=tuple(replace(f, roll=(f.roll + offset) % (2 * np.pi)) for f in self.fins))
 
 
+POINTED_TIP_STRIP = 1.0
+"""Smallest width of the strip closing a pointed fin tip in subsonic meshes [fin
+thicknesses] (:func:`_span_stations`): its triangles then rise at most atan(1/2) =
+27 deg from the fin plane."""
+
 SUPERSONIC_LE_WEDGE = 3.0
 """Length of the wedge standing in for a blunt fin leading edge in supersonic
 meshes [fin thicknesses]: half-angle atan(1/6) = 9.5 deg, subinclined (the
@@ -320,6 +325,12 @@ class MeshOptions:
     it the Kestrel's table CA at 8 deg went negative at Mach 0.35 (0.071 -> -0.055) and the
     Basic Finner's CA(4 deg) - CA(0) was -0.0136 against PANAIR's -0.0090 (without it
     -0.0077).  Rounded and airfoil edges keep theirs (a round nose sustains suction).
+    fin_strips : how the fin strips are spaced along the span (:func:`_span_stations`):
+    ``"outline"`` (subsonic) shares the planform outline's length and keeps the strip
+    closing a pointed tip one fin thickness wide; ``"sine"`` (:meth:`for_mach`'s
+    supersonic meshes, unchanged since session 9) equal strips, sine-spaced on an
+    outline, whose pointed tips' sideways slivers the supersonic solver treats as a
+    tip cap (:func:`panair.solver.supersonic._pointed_tip_closure`).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -349,6 +360,7 @@ class MeshOptions:
     mirror_seam: bool = True
     separated_transitions: bool = False
     sharp_le_axial: bool = False
+    fin_strips: str = "outline"
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
@@ -358,12 +370,12 @@ class MeshOptions:
         if mach <= 1.0:
             return self
         if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions \
-                and self.sharp_le_axial:
+                and self.sharp_le_axial and self.fin_strips == "sine":
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
                        supersonic_span_factor=1.0,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
-                       separated_transitions=True, sharp_le_axial=True)
+                       separated_transitions=True, sharp_le_axial=True, fin_strips="sine")
 
     def coincidence_free(self, radius: float, mach: float) -> "MeshOptions":
         """These options with the body panel length chosen so that no collocation point
@@ -647,14 +659,55 @@ def _wake_through(te, far, aft: FinGeometry, body) -> tuple[np.ndarray, np.ndarr
     return pts, interior
 
 
+def _span_stations(f: FinGeometry, n_s: int, opt) -> np.ndarray:
+    """Span fractions of the fin's ``n_s`` strip edges, 0 (root) ... 1 (tip), by
+    :attr:`MeshOptions.fin_strips`.
+
+    ``"sine"``: equal strips, or on an outline sine-spaced ones narrowing toward
+    the tip.  ``"outline"``: strips sharing the planform outline's length (leading
+    plus trailing edge, :func:`_outline_stations`: equal strips on a trapezoid,
+    sine-like at an elliptical tip, where the edges turn chordwise), and the strip
+    that closes a pointed tip (chord 0) at least one fin thickness wide
+    (:data:`POINTED_TIP_STRIP`), the others sharing the rest.  Why: the closing
+    strip is a fan of triangles from the full thickness to the tip point; narrower
+    than the thickness, its triangles face sideways like a tip cap, and the
+    subsonic surface gradient on them was singular (ICL APEX's fins, Mach 0.05,
+    alpha 12 deg, 12 x 20 sine strips: fan 0.4 / 0.9 / 1.4 mm wide (t = 2.5 mm):
+    |Cp| 1.8e4 / 4.8e3 / 17; the same planform as a two-point outline, 24 x 40:
+    |Cp| 941 on sine strips, 22 on outline strips)."""
+    if opt.fin_strips == "sine":
+        s = np.linspace(0.0, 1.0, n_s + 1)
+        return np.sin(0.5 * np.pi * s) if f.outline is not None else s
+    s = _outline_stations(f, n_s, 1.0)
+    if n_s > 1 and f.chord_at(1.0) == 0.0:
+        inner = 1.0 - min(POINTED_TIP_STRIP * f.thickness / f.span, 0.5)
+        if s[-2] > inner:
+            s = np.append(_outline_stations(f, n_s - 1, inner), 1.0)
+    return s
+
+
+def _outline_stations(f: FinGeometry, n: int, end: float) -> np.ndarray:
+    """``n`` + 1 span fractions from 0 to ``end`` splitting the length of the
+    planform's leading and trailing edges (in the fin plane, from the root to span
+    fraction ``end``) into equal parts (equal strips on a trapezoid)."""
+    if f.outline is None:
+        return np.linspace(0.0, end, n + 1)
+    fr = np.union1d(np.linspace(0.0, end, 513), f.outline[0][f.outline[0] < end])
+    le = f.le_at(fr)
+    te = le + f.chord_at(fr)
+    dy = np.diff(fr) * f.span
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(dy, np.diff(le)) + np.hypot(dy, np.diff(te)))])
+    s = np.interp(np.linspace(0.0, arc[-1], n + 1), arc, fr)
+    s[-1] = end
+    return s
+
+
 def _fin_networks(f: FinGeometry, phi, body, opt, k, length, behind: FinGeometry | None = None):
     e_r = np.array([0.0, np.sin(phi), np.cos(phi)])      # spanwise
     e_t = np.array([0.0, np.cos(phi), -np.sin(phi)])     # thickness (e_r x e_t = -x ... any)
     n_c = opt.scaled("n_chord")
     n_s = opt.scaled("n_span")
-    s = np.linspace(0.0, 1.0, n_s + 1)
-    if f.outline is not None:        # curved outlines: strips narrowing toward the tip
-        s = np.sin(0.5 * np.pi * s)
+    s = _span_stations(f, n_s, opt)
     # chordwise parameter clustered at LE and TE
     u = _chord_stations(n_c, opt.chord_clustering)
     lines = []
