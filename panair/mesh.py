@@ -297,8 +297,9 @@ class MeshOptions:
     panels per fin; wake_length : wake length [body lengths];
     chord_clustering : 0 uniform ... 1 full cosine clustering of the
     chordwise stations at the fin leading and trailing edges;
-    supersonic_span_factor : n_span is multiplied by this for supersonic
-    Mach numbers (:meth:`for_mach`); blunt_le_wedge : blunt (square,
+    supersonic_span_factor, supersonic_chord_factor : n_span and n_chord are
+    multiplied by these for supersonic Mach numbers (:meth:`for_mach`; the defaults
+    mesh the fins 12 x 20 subsonic, 12 x 30 supersonic); blunt_le_wedge : blunt (square,
     rounded) fin leading edges are meshed as a wedge this many fin
     thicknesses long (0: as they are; :meth:`for_mach` sets
     ``SUPERSONIC_LE_WEDGE`` for supersonic Mach numbers, where linear theory
@@ -339,22 +340,29 @@ class MeshOptions:
     twice-finer change is under 1.3 %.  The subsonic doublet solution
     converges on PANAIR from above as the strips narrow (Basic Finner, Mach
     0.6, n_span 6 / 9 / 12 / 24: CN-alpha +3.4 / +2.1 / +1.4 / +0.5 %,
-    Cm-alpha +4.2 / +2.4 / +1.4 / +0.1 %; n_chord 60 instead of 30 moves
-    CN-alpha +0.1 %); 6 strips are kept for cost (within 5 % of PANAIR at
-    Mach 0.4-0.8).  (Until the sharp leading edge entered the surface-gradient
-    stencil, session 15, 6 looked best, -1.9 %, and 12 / 24 drifted to
-    -3.8 / -4.7 %: the leading-edge loss cancelled the strip-width error.)
+    Cm-alpha +4.2 / +2.4 / +1.4 / +0.1 %) and hardly with the chordwise count
+    (12 strips, n_chord 15 / 20 / 30 / 45: CN-alpha +1.39 / +1.39 / +1.41 /
+    +1.43 %), so the subsonic fins are 12 x 20 (session 17; before: 6 x 30):
+    Basic Finner Mach 0.4 / 0.6 / 0.8 CN-alpha +3.3 / +3.4 / +3.6 -> +1.4 / +1.4 /
+    +1.5 %, Cm-alpha +4.2 / +4.2 / +4.4 -> +1.3 / +1.3 / +1.3 % vs PANAIR, default
+    vs twice finer CN-alpha -1.6 -> -0.4 %, at about the same panel count (1948 ->
+    1976); the supersonic fins stay 12 x 30 (supersonic_chord_factor 1.5).  That
+    needed the pointed tips meshed without slivers (:attr:`fin_strips`; ICL APEX
+    did not build on sine strips).  (Until the sharp leading edge entered the
+    surface-gradient stencil, session 15, 6 looked best, -1.9 %, and 12 / 24
+    drifted to -3.8 / -4.7 %: the leading-edge loss cancelled the strip-width error.)
     """
 
     n_theta: int = 32
     n_nose: int = 20
     body_spacing: float = 0.4
-    n_chord: int = 30
-    n_span: int = 6
+    n_chord: int = 20
+    n_span: int = 12
     wake_length: float = 5.0
     refine: float = 1.0
     chord_clustering: float = 1.0
-    supersonic_span_factor: float = 2.0
+    supersonic_span_factor: float = 1.0
+    supersonic_chord_factor: float = 1.5
     blunt_le_wedge: float = 0.0
     tip_mach: tuple = ()
     mirror_seam: bool = True
@@ -369,11 +377,13 @@ class MeshOptions:
         """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
         if mach <= 1.0:
             return self
-        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions \
-                and self.sharp_le_axial and self.fin_strips == "sine":
+        if self.supersonic_span_factor == 1.0 and self.supersonic_chord_factor == 1.0 \
+                and self.blunt_le_wedge > 0 and self.separated_transitions and self.sharp_le_axial \
+                and self.fin_strips == "sine":
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
-                       supersonic_span_factor=1.0,
+                       n_chord=max(1, int(round(self.n_chord * self.supersonic_chord_factor))),
+                       supersonic_span_factor=1.0, supersonic_chord_factor=1.0,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
                        separated_transitions=True, sharp_le_axial=True, fin_strips="sine")
 

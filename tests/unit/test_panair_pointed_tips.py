@@ -38,7 +38,8 @@ def _swept_geometry(tip_chord, freeform=True):
 
 
 def _swept_rocket(tip_chord, freeform=True):
-    opt = MeshOptions(n_theta=24, n_nose=10, body_spacing=0.8, n_chord=12, n_span=6)
+    opt = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                      n_theta=24, n_nose=10, body_spacing=0.8, n_chord=12, n_span=6)
     return build_panels(mesh_rocket(_swept_geometry(tip_chord, freeform), symmetric=False,
                                     options=opt.for_mach(1.2)), symmetric=False)
 
