@@ -276,6 +276,11 @@ class RocketGeometry:
         return replace(self, fins=tuple(replace(f, roll=(f.roll + offset) % (2 * np.pi)) for f in self.fins))
 
 
+POINTED_TIP_STRIP = 1.0
+"""Smallest width of the strip closing a pointed fin tip in subsonic meshes [fin
+thicknesses, at most half the span] (:func:`_span_stations`): its triangles then
+rise at most atan(1/2) = 27 deg from the fin plane."""
+
 SUPERSONIC_LE_WEDGE = 3.0
 """Length of the wedge standing in for a blunt fin leading edge in supersonic
 meshes [fin thicknesses]: half-angle atan(1/6) = 9.5 deg, subinclined (the
@@ -292,8 +297,9 @@ class MeshOptions:
     panels per fin; wake_length : wake length [body lengths];
     chord_clustering : 0 uniform ... 1 full cosine clustering of the
     chordwise stations at the fin leading and trailing edges;
-    supersonic_span_factor : n_span is multiplied by this for supersonic
-    Mach numbers (:meth:`for_mach`); blunt_le_wedge : blunt (square,
+    supersonic_span_factor, supersonic_chord_factor : n_span and n_chord are
+    multiplied by these for supersonic Mach numbers (:meth:`for_mach`; the defaults
+    mesh the fins 12 x 20 subsonic, 12 x 30 supersonic); blunt_le_wedge : blunt (square,
     rounded) fin leading edges are meshed as a wedge this many fin
     thicknesses long (0: as they are; :meth:`for_mach` sets
     ``SUPERSONIC_LE_WEDGE`` for supersonic Mach numbers, where linear theory
@@ -320,6 +326,12 @@ class MeshOptions:
     it the Kestrel's table CA at 8 deg went negative at Mach 0.35 (0.071 -> -0.055) and the
     Basic Finner's CA(4 deg) - CA(0) was -0.0136 against PANAIR's -0.0090 (without it
     -0.0077).  Rounded and airfoil edges keep theirs (a round nose sustains suction).
+    fin_strips : how the fin strips are spaced along the span (:func:`_span_stations`):
+    ``"outline"`` (subsonic) shares the planform outline's length and keeps the strip
+    closing a pointed tip one fin thickness wide; ``"sine"`` (:meth:`for_mach`'s
+    supersonic meshes, as before session 17) equal strips, sine-spaced on an
+    outline, whose pointed tips' sideways slivers the supersonic solver treats as a
+    tip cap (:func:`panair.solver.supersonic._pointed_tip_closure`).
 
     Why two fin meshes: the two solvers converge differently in the fin
     strip width (measured on the Basic Finner, session 2).  The supersonic
@@ -328,27 +340,35 @@ class MeshOptions:
     twice-finer change is under 1.3 %.  The subsonic doublet solution
     converges on PANAIR from above as the strips narrow (Basic Finner, Mach
     0.6, n_span 6 / 9 / 12 / 24: CN-alpha +3.4 / +2.1 / +1.4 / +0.5 %,
-    Cm-alpha +4.2 / +2.4 / +1.4 / +0.1 %; n_chord 60 instead of 30 moves
-    CN-alpha +0.1 %); 6 strips are kept for cost (within 5 % of PANAIR at
-    Mach 0.4-0.8).  (Until the sharp leading edge entered the surface-gradient
-    stencil, session 15, 6 looked best, -1.9 %, and 12 / 24 drifted to
-    -3.8 / -4.7 %: the leading-edge loss cancelled the strip-width error.)
+    Cm-alpha +4.2 / +2.4 / +1.4 / +0.1 %) and hardly with the chordwise count
+    (12 strips, n_chord 15 / 20 / 30 / 45: CN-alpha +1.39 / +1.39 / +1.41 /
+    +1.43 %), so the subsonic fins are 12 x 20 (session 17; before: 6 x 30):
+    Basic Finner Mach 0.4 / 0.6 / 0.8 CN-alpha +3.3 / +3.4 / +3.6 -> +1.4 / +1.4 /
+    +1.5 %, Cm-alpha +4.2 / +4.2 / +4.4 -> +1.3 / +1.3 / +1.3 % vs PANAIR, default
+    vs twice finer CN-alpha -1.6 -> -0.4 %, at about the same panel count (1948 ->
+    1976); the supersonic fins stay 12 x 30 (supersonic_chord_factor 1.5).  That
+    needed the pointed tips meshed without slivers (:attr:`fin_strips`; ICL APEX
+    did not build on sine strips).  (Until the sharp leading edge entered the
+    surface-gradient stencil, session 15, 6 looked best, -1.9 %, and 12 / 24
+    drifted to -3.8 / -4.7 %: the leading-edge loss cancelled the strip-width error.)
     """
 
     n_theta: int = 32
     n_nose: int = 20
     body_spacing: float = 0.4
-    n_chord: int = 30
-    n_span: int = 6
+    n_chord: int = 20
+    n_span: int = 12
     wake_length: float = 5.0
     refine: float = 1.0
     chord_clustering: float = 1.0
-    supersonic_span_factor: float = 2.0
+    supersonic_span_factor: float = 1.0
+    supersonic_chord_factor: float = 1.5
     blunt_le_wedge: float = 0.0
     tip_mach: tuple = ()
     mirror_seam: bool = True
     separated_transitions: bool = False
     sharp_le_axial: bool = False
+    fin_strips: str = "outline"
 
     def scaled(self, name):
         return max(2, int(round(getattr(self, name) * self.refine)))
@@ -357,13 +377,15 @@ class MeshOptions:
         """The options to mesh with for Mach ``mach`` [-] (supersonic: finer fin strips)."""
         if mach <= 1.0:
             return self
-        if self.supersonic_span_factor == 1.0 and self.blunt_le_wedge > 0 and self.separated_transitions \
-                and self.sharp_le_axial:
+        if self.supersonic_span_factor == 1.0 and self.supersonic_chord_factor == 1.0 \
+                and self.blunt_le_wedge > 0 and self.separated_transitions and self.sharp_le_axial \
+                and self.fin_strips == "sine":
             return self
         return replace(self, n_span=max(1, int(round(self.n_span * self.supersonic_span_factor))),
-                       supersonic_span_factor=1.0,
+                       n_chord=max(1, int(round(self.n_chord * self.supersonic_chord_factor))),
+                       supersonic_span_factor=1.0, supersonic_chord_factor=1.0,
                        blunt_le_wedge=self.blunt_le_wedge or SUPERSONIC_LE_WEDGE,
-                       separated_transitions=True, sharp_le_axial=True)
+                       separated_transitions=True, sharp_le_axial=True, fin_strips="sine")
 
 
 def _chord_stations(n, clustering):
@@ -623,14 +645,58 @@ def _wake_through(te, far, aft: FinGeometry, body) -> tuple[np.ndarray, np.ndarr
     return pts, interior
 
 
+def _span_stations(f: FinGeometry, n_s: int, opt) -> np.ndarray:
+    """Span fractions of the fin's ``n_s`` strip edges, 0 (root) ... 1 (tip), by
+    :attr:`MeshOptions.fin_strips`.
+
+    ``"sine"``: equal strips, or on an outline sine-spaced ones narrowing toward
+    the tip.  ``"outline"``: strips sharing the planform outline's length (leading
+    plus trailing edge, :func:`_outline_stations`: equal strips on a trapezoid,
+    sine-like at an elliptical tip, where the edges turn chordwise), and the strip
+    that closes a pointed tip (chord 0) at least one fin thickness wide
+    (:data:`POINTED_TIP_STRIP`), the others sharing the rest.  Why: the closing
+    strip is a fan of triangles from the full thickness to the tip point; narrower
+    than the thickness, its triangles face sideways like a tip cap, and the
+    subsonic surface gradient on them was singular (ICL APEX's fins, Mach 0.05,
+    alpha 12 deg, 12 x 20 sine strips: fan 0.4 / 0.9 / 1.4 mm wide (t = 2.5 mm):
+    |Cp| 1.8e4 / 4.8e3 / 17; the same planform as a two-point outline, 24 x 40:
+    |Cp| 941 on sine strips, 22 on outline strips).  The outline's length also
+    follows APEX's planform, whose chord falls fastest near the root, better than
+    sine strips: meshed planform area with 6 / 12 strips +9.2 / +1.7 % (sine) ->
+    -1.0 / -0.3 %."""
+    if opt.fin_strips == "sine":
+        s = np.linspace(0.0, 1.0, n_s + 1)
+        return np.sin(0.5 * np.pi * s) if f.outline is not None else s
+    s = _outline_stations(f, n_s, 1.0)
+    if n_s > 1 and f.chord_at(1.0) == 0.0:
+        inner = 1.0 - min(POINTED_TIP_STRIP * f.thickness / f.span, 0.5)
+        if s[-2] > inner:
+            s = np.append(_outline_stations(f, n_s - 1, inner), 1.0)
+    return s
+
+
+def _outline_stations(f: FinGeometry, n: int, end: float) -> np.ndarray:
+    """``n`` + 1 span fractions from 0 to ``end`` splitting the length of the
+    planform's leading and trailing edges (in the fin plane, from the root to span
+    fraction ``end``) into equal parts (equal strips on a trapezoid)."""
+    if f.outline is None:
+        return np.linspace(0.0, end, n + 1)
+    fr = np.union1d(np.linspace(0.0, end, 513), f.outline[0][f.outline[0] < end])
+    le = f.le_at(fr)
+    te = le + f.chord_at(fr)
+    dy = np.diff(fr) * f.span
+    arc = np.concatenate([[0.0], np.cumsum(np.hypot(dy, np.diff(le)) + np.hypot(dy, np.diff(te)))])
+    s = np.interp(np.linspace(0.0, arc[-1], n + 1), arc, fr)
+    s[-1] = end
+    return s
+
+
 def _fin_networks(f: FinGeometry, phi, body, opt, k, length, behind: FinGeometry | None = None):
     e_r = np.array([0.0, np.sin(phi), np.cos(phi)])      # spanwise
     e_t = np.array([0.0, np.cos(phi), -np.sin(phi)])     # thickness (e_r x e_t = -x ... any)
     n_c = opt.scaled("n_chord")
     n_s = opt.scaled("n_span")
-    s = np.linspace(0.0, 1.0, n_s + 1)
-    if f.outline is not None:        # curved outlines: strips narrowing toward the tip
-        s = np.sin(0.5 * np.pi * s)
+    s = _span_stations(f, n_s, opt)
     # chordwise parameter clustered at LE and TE
     u = _chord_stations(n_c, opt.chord_clustering)
     lines = []

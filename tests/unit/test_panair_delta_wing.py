@@ -65,7 +65,8 @@ def wing_cn_alpha(mach, sweep_deg, symmetric=True, refine=1.0):
     xn = np.linspace(0.0, 0.1, 6)
     body = BodyGeometry(np.append(xn, X_ROOT + CHORD), np.append(R_BODY * xn / 0.1, R_BODY))
     fins = (FinGeometry(2, CHORD, 0.0, span, CHORD, X_ROOT, THICK, roll=np.pi / 2),)
-    opt = MeshOptions(n_theta=16, n_nose=6, body_spacing=2.0, n_chord=20, n_span=8,
+    opt = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                      n_theta=16, n_nose=6, body_spacing=2.0, n_chord=20, n_span=8,
                       chord_clustering=0.0, refine=refine).for_mach(mach)
     p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=symmetric, options=opt),
                      symmetric=symmetric)
@@ -125,7 +126,8 @@ def test_thin_wing_mirror_sides_compiled_equals_numpy(thin_wing):
     xn = np.linspace(0.0, 0.1, 4)
     body = BodyGeometry(np.append(xn, X_ROOT + CHORD), np.append(R_BODY * xn / 0.1, R_BODY))
     fins = (FinGeometry(2, CHORD, 0.0, span, CHORD, X_ROOT, THICK, roll=np.pi / 2),)
-    opt = MeshOptions(n_theta=8, n_nose=3, body_spacing=4.0, n_chord=6, n_span=2,
+    opt = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                      n_theta=8, n_nose=3, body_spacing=4.0, n_chord=6, n_span=2,
                       chord_clustering=0.0).for_mach(mach)
     p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
                      symmetric=True)

@@ -10,7 +10,8 @@ from panair.mesh import BodyGeometry, FinGeometry, MeshOptions, RocketGeometry, 
 from panair.solver import build_panels, make_solver
 from panair.solver.panels import MirrorFold, mirror_map, mirror_plane
 
-OPT = MeshOptions(n_theta=12, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
+OPT = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                  n_theta=12, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
 
 
 def _panels(count, roll_deg, symmetric=False):

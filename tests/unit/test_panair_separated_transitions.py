@@ -15,7 +15,8 @@ from panair.solver import build_panels
 from panair.sweep import build_table
 
 D = 0.1016
-COARSE = MeshOptions(n_theta=16, n_nose=8, body_spacing=1.0, n_chord=8, n_span=3)
+COARSE = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                     n_theta=16, n_nose=8, body_spacing=1.0, n_chord=8, n_span=3)
 
 
 def _body(boattail_len, r_aft):

@@ -51,7 +51,8 @@ def test_transonic_and_superinclined_cases_are_reported(coarse_finner):
     finned, _ = coarse_finner
     with pytest.raises(SolverError, match="transonic"):
         make_solver(finned, 1.05, sref=np.pi / 4, lref=1.0)
-    opt = MeshOptions(n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
+    opt = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                      n_theta=8, n_nose=4, body_spacing=2.0, n_chord=4, n_span=2)
     blunt = BodyGeometry(np.array([0.0, 0.3, 3.0]), np.array([0.2, 0.5, 0.5]))   # flat nose cap
     panels = build_panels(mesh_rocket(RocketGeometry(blunt), symmetric=True, options=opt),
                           symmetric=True)
@@ -127,7 +128,8 @@ def test_leading_edge_bevel_only_fins_solve_supersonic():
     against Ackeret's 2-D value 4 fins x 2 theta t s / beta / Sref, theta =
     (t/2)/te_bevel: within 30 % (the tip Mach cones relieve the 3-D fin)."""
     body = BodyGeometry(np.array([0.0, 0.3, 1.2]), np.array([0.0, 0.05, 0.05]))
-    opt = MeshOptions(n_theta=16, n_nose=10, body_spacing=0.8, n_chord=16, n_span=4)
+    opt = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                      n_theta=16, n_nose=10, body_spacing=0.8, n_chord=16, n_span=4)
     ca = {}
     for te in (0.0, 0.02):
         fins = (FinGeometry(4, 0.12, 0.06, 0.1, 0.06, 1.0, 0.005, section="double_wedge",
@@ -167,7 +169,8 @@ def test_three_fin_haack_rocket_with_body_behind_blunt_fins_solves():
     body = BodyGeometry(np.append(x, 2.5), np.append(r, 0.075))
     fins = (FinGeometry(3, 0.23, 0.11, 0.185, 0.12, 2.145, 0.0058, roll=np.pi / 2,
                         section="rounded"),)
-    opt = replace(MeshOptions(n_theta=24, n_nose=12, body_spacing=0.6, n_chord=16,
+    opt = replace(MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                              n_theta=24, n_nose=12, body_spacing=0.6, n_chord=16,
                               n_span=4).for_mach(1.2), tip_mach=(1.5,))
     p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=False, options=opt),
                      symmetric=False)

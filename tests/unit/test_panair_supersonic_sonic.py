@@ -198,7 +198,8 @@ def test_sonic_fin_leading_edge_solves_linearly(monkeypatch):
     span = 0.1
     fins = (FinGeometry(2, 0.14, 0.07, span, span * math.tan(math.acos(1 / 1.2)), 0.95, 0.004,
                         roll=np.pi / 2, section="rounded"),)
-    opt = replace(MeshOptions(n_theta=16, n_nose=10, body_spacing=0.8, n_chord=16,
+    opt = replace(MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                              n_theta=16, n_nose=10, body_spacing=0.8, n_chord=16,
                               n_span=6).for_mach(1.2), tip_mach=(1.2,))
     p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
                      symmetric=True)

@@ -25,7 +25,7 @@ X_TE = 7.5                      # fin root trailing edge [cal]; body to 10 cal
 
 def _opt(**kw):
     base = MeshOptions(**{"n_theta": 16, "n_nose": 8, "body_spacing": 0.5, "n_chord": 10,
-                          "n_span": 3, **kw})
+                          "n_span": 3, "supersonic_span_factor": 2.0, "supersonic_chord_factor": 1.0, **kw})
     return replace(base.for_mach(1.2), tip_mach=(MACH,))
 
 

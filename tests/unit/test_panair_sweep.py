@@ -12,7 +12,8 @@ from panair.sweep import build_table, sweep_pressure
 from panair.solver import build_panels, make_solver
 from panair.mesh import mesh_rocket
 
-COARSE = MeshOptions(n_theta=16, n_nose=8, body_spacing=1.0, n_chord=8, n_span=3)
+COARSE = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                     n_theta=16, n_nose=8, body_spacing=1.0, n_chord=8, n_span=3)
 
 
 def _bf():
@@ -58,10 +59,13 @@ def test_sweep_matches_direct_solve_and_parallel():
 
 
 def test_supersonic_mach_numbers_use_the_finer_fin_strips():
-    """MeshOptions.for_mach: n_span x supersonic_span_factor above Mach 1; the
-    sweep solves each Mach number on its regime's mesh (same numbers as a
-    direct solve on that mesh; Mach 1.6 on its own body spacing: its phase on this
-    coarse mesh: 0.11)."""
+    """MeshOptions.for_mach: n_span x supersonic_span_factor, n_chord x
+    supersonic_chord_factor above Mach 1 (defaults: fins 12 x 20 subsonic, 12 x 30
+    supersonic, the supersonic mesh of sessions 2-16); the sweep solves each Mach
+    number on its regime's mesh (same numbers as a direct solve on that mesh; Mach 1.6
+    on its own body spacing: its phase on this coarse mesh: 0.11)."""
+    d = MeshOptions()
+    assert (d.n_span, d.n_chord, d.for_mach(1.5).n_span, d.for_mach(1.5).n_chord) == (12, 20, 12, 30)
     assert COARSE.for_mach(0.8) is COARSE
     sup = COARSE.for_mach(1.5)
     assert sup.n_span == 6 and sup.supersonic_span_factor == 1.0 and sup.for_mach(2.0) is sup
@@ -240,7 +244,8 @@ def test_blunt_fin_leading_edges_solve_supersonic():
     fins = (FinGeometry(4, 0.12, 0.06, 0.1, 0.06, 1.0, 0.005, section="square"),)
     g = RocketGeometry(body, fins)
     sref = np.pi * 0.05**2
-    opt = MeshOptions(n_theta=16, n_nose=8, body_spacing=1.0, n_chord=12, n_span=3)
+    opt = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                      n_theta=16, n_nose=8, body_spacing=1.0, n_chord=12, n_span=3)
     blunt = build_panels(mesh_rocket(g, symmetric=True, options=opt), symmetric=True)
     with pytest.raises(SolverError, match="superinclined"):
         make_solver(blunt, 2.0, sref=sref, lref=0.1)
@@ -294,7 +299,8 @@ def test_local_inclination_fallback_on_a_superinclined_cone():
     rr = np.where(x <= lc, x * np.tan(half), r)
     g = RocketGeometry(BodyGeometry(x, rr), (), "cone35")
     sref = np.pi * r * r
-    fine = MeshOptions(n_theta=64, n_nose=16, body_spacing=1.0, n_chord=8, n_span=3)
+    fine = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                       n_theta=64, n_nose=16, body_spacing=1.0, n_chord=8, n_span=3)
     c, info = sweep_pressure(g, [2.0], np.radians([0.0, 4.0]), sref=sref, lref=2 * r, xref=0.0,
                              options=fine, workers=1, progress=False)
     assert info["mach_local_inclination"] == [2.0]
@@ -313,7 +319,8 @@ def test_local_inclination_puts_no_incidence_lift_on_a_cylinder():
     from panair.mesh import BodyGeometry, RocketGeometry
     r, half = 0.05, np.radians(35.0)
     lc = r / np.tan(half)
-    fine = MeshOptions(n_theta=32, n_nose=12, body_spacing=1.0, n_chord=8, n_span=3)
+    fine = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
+                       n_theta=32, n_nose=12, body_spacing=1.0, n_chord=8, n_span=3)
     cn, xcp = [], []
     for cal in (1.0, 8.0):
         x = np.concatenate([np.linspace(0.0, lc, 20), np.linspace(lc, lc + cal * 2 * r, 12)[1:]])

@@ -18,7 +18,13 @@ place of Galejs' K = 1.1: the secant CN-alpha falls by 0.19-0.20 /rad on every f
 (the cross-flow's share at 3-4 deg, 0.94 -> 0.72 /rad), CP within 0.02 cal (0.12 on the
 local-inclination rows), CA0 unchanged; subsonic CN-alpha fin 1 +26.1 / +36.0 ->
 +22.3 / +32.1 %, fin 5 +23.1 / +37.4 -> +20.9 / +35.2 %, fin 10 +0.9 / +1.4 -> -1.7 /
--1.2 %; goals met unchanged (0, 0, 4, 2, 3).  The supersonic CP, 0.2-1.0 cal forward
+-1.2 %; goals met unchanged (0, 0, 4, 2, 3).  Session 17, the subsonic fins meshed 12 x 20
+instead of 6 x 30 (panair.mesh.MeshOptions; closer to PANAIR on the Basic Finner): subsonic
+(Mach 0.6 / 0.9) CN-alpha fin 1 +22.3 / +32.1 -> +22.0 / +31.9 %, fin 5 +20.9 / +35.2 ->
++19.5 / +33.0 %, fin 9 +7.5 / +9.2 -> +6.5 / +8.6 %, fin 10 -1.7 / -1.2 -> -3.5 / -2.8 %,
+fin 12 +2.2 / +3.6 -> +0.6 / +0.9 %; fin 10's CP at Mach 0.6 -0.27 -> -0.31 cal, so goals
+met 0, 0, 5, 2, 3 -> 0, 0, 5, 1, 3 (the finer strips' lift is the converged one: the
+coarse strips' excess had covered fin 10's shortfall).  The supersonic CP, 0.2-1.0 cal forward
 of the tunnel on every fin set in session 9, was the afterbody (2.2-2.6 cal of body
 behind the fins): the supersonic solver had no fin wake, so the fins' potential
 jump died out on the body behind them and the afterbody carried a download

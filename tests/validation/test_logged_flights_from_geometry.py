@@ -26,6 +26,10 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
   anchor (panair.transonic item 4; NASA TR R-100 nose data): FT1 -2.13 -> -2.09 %, FT2
   +0.64 -> +0.72 %, APEX +5.86 -> +6.26 % (less nose drag at Mach 0.9-1.2: APEX's boost
   runs through it).
+- Session 17, the subsonic fins meshed 12 x 20 instead of 6 x 30 (panair.mesh.MeshOptions),
+  pointed tips closed by a strip one fin thickness wide (on the old sine strips the finer
+  mesh gave APEX a sliver panel, |Cp| 1.8e4, and aero build refused): FT1 -2.09 -> -2.08 %,
+  FT2 +0.72 -> +0.77 %, APEX +6.26 -> +6.27 %.
 
 Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
 FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).
