@@ -78,11 +78,13 @@ def test_default_mach_grid_reaches_1_3_times_the_peak():
     assert default_mach_grid(1830.0)[-1] == MACH_SUPERSONIC_MAX
 
 
-def test_peak_mach_estimate_is_the_files_own_flight():
+def test_peak_mach_estimate_is_the_files_own_flight(monkeypatch):
     """`aero build`'s peak Mach number is the max Mach of the file flown as it is (the
     independent path: `ironbark simulate --json`); a file that cannot fly gives None
-    with a warning (the grid then ends at 2)."""
+    with a warning (the grid then ends at 2).  The .ork's motors are kept unresolvable
+    (no IRONBARK_MOTOR_PATH), as on a fresh machine."""
     import warnings
+    monkeypatch.delenv("IRONBARK_MOTOR_PATH", raising=False)
 
     from ironbark_opt.cli.aero import estimated_peak_mach
     r = CliRunner().invoke(main, ["simulate", str(TOML), "--json"])
