@@ -24,7 +24,7 @@ from ironbark_opt.errors import SolverError                       # noqa: E402
 from ironbark_opt.vehicle import load_rocket_geometry              # noqa: E402
 from panair.coincidence import coincidence_free_options, coincidence_phase  # noqa: E402
 from panair.geometry_adapter import from_rocket, is_symmetric      # noqa: E402
-from panair.mesh import MeshOptions, mesh_rocket                   # noqa: E402
+from panair.mesh import MeshOptions, mesh_rocket, tip_options      # noqa: E402
 from panair.solver import build_panels, make_solver                # noqa: E402
 from panair.solver.panels import mirror_plane                      # noqa: E402
 from panair.sweep import supersonic_mesh_options                   # noqa: E402
@@ -62,9 +62,10 @@ def main():
     print("Mach    phase  shared CA(0) CN(2) Cm(2)       free: spacing phase  CA(0) CN(2) Cm(2)"
           "       err CN, Cm")
     for m in machs:
-        free = coincidence_free_options(g, shared, m, band=np.inf)
-        s, f = solve(shared, m), solve(free, m)
-        print(f"{m:.4f}  {coincidence_phase(g, shared, m):.3f}  {s[0]:.4f} {s[1]:.4f} {s[2]:+.4f}"
+        own = tip_options(g, shared, m)          # the Mach number's own nose tip, as the sweep
+        free = coincidence_free_options(g, own, m, band=np.inf)
+        s, f = solve(own, m), solve(free, m)
+        print(f"{m:.4f}  {coincidence_phase(g, own, m):.3f}  {s[0]:.4f} {s[1]:.4f} {s[2]:+.4f}"
               f"   {free.body_spacing:.3f} {coincidence_phase(g, free, m):.3f}  {f[0]:.4f} "
               f"{f[1]:.4f} {f[2]:+.4f}   {100 * (s[1] / f[1] - 1):+.2f} % {100 * (s[2] / f[2] - 1):+.2f} %",
               flush=True)

@@ -47,7 +47,8 @@ from ironbark_opt.errors import InputError
 
 from .lawgs import Network
 
-__all__ = ["BodyGeometry", "FinGeometry", "RocketGeometry", "mesh_rocket", "MeshOptions"]
+__all__ = ["BodyGeometry", "FinGeometry", "RocketGeometry", "mesh_rocket", "MeshOptions",
+           "tip_options", "tip_cone_fraction"]
 
 
 @dataclass(frozen=True)
@@ -416,8 +417,22 @@ def _meridians(th_start: float, th_end: float, fin_thetas, n_theta: int) -> np.n
 #: panair.solver.supersonic) with room for the faceting of the flat panels; a tip
 #: the solver accepts is left as it is
 TIP_BT_MAX = 0.93
-#: The conical tip may replace at most this fraction of the nose length
-TIP_MAX_FRACTION = 0.1
+#: The conical tip may replace at most this fraction of the nose length.  Measured
+#: (session 17, with the per-panel nose blend of panair.solver.supersonic
+#: NOSE_WEIGHT_PER_PANEL; TR R-100 fineness-3 noses on a cylinder against Stoney's
+#: free-flight pressure drag, tests/validation/test_nose_drag_tr_r100.py, the cone forced
+#: longer than the Mach number needs): von Karman at Mach 3.0 (needs 0.21) drag +0.0000 /
+#: +0.0026 / +0.0035 / +0.0038 / +0.0041 / +0.0064 / +0.0102 at cone fractions 0.21 / 0.35
+#: / 0.50 / 0.58 / 0.66 / 0.73 / 0.79 (data 0.083: +4.9 % at 0.66, +12 % at 0.79), nose
+#: CN-alpha 3.18 / 3.18 / 3.03 / 2.95 / 2.91 / 3.00 / 3.22 /rad, CP within 0.05 cal; power 3/4
+#: at Mach 2.8 (needs 0.05; data 0.078) drag +0.0005 ... +0.0010 to 0.27, +0.0055 at 0.50,
+#: +0.0081 at 0.58, +0.0109 at 0.66 (+14 %), CN-alpha within 3 % and CP within 0.08 cal to
+#: 0.58.  0.6: the nose's drag within the issue's 10 % of the data and its CP within 0.1
+#: cal on both up to the cosine station 0.58, while a longer cone lets linear theory solve
+#: what fell to local inclination at 0.1 (Allen's 3-cal ogive at Mach 3.95 needs 0.58, fin
+#: 10 CN-alpha 5.35 -> 8.45 /rad, tunnel 7.09, CP 5.06 -> 6.20 cal, tunnel 6.19; EuRoC
+#: Andromeda's 2-cal von Karman at Mach 2.0 needs 0.15).
+TIP_MAX_FRACTION = 0.6
 
 
 def _sharpened_tip(nose_x, body: BodyGeometry, machs) -> list:
@@ -427,6 +442,8 @@ def _sharpened_tip(nose_x, body: BodyGeometry, machs) -> list:
     largest Mach number of ``machs`` that a tip of at most ``TIP_MAX_FRACTION`` of
     the nose length satisfies; the stations as they are when none is (or none
     needs it).  Higher Mach numbers stay superinclined (the solver's fallback).
+    A sweep meshes each supersonic Mach number's tip for that Mach number alone
+    (:func:`tip_options`).
 
     Why: the meridian of a Haack (von Karman, LV-Haack) or power-law nose starts
     with an infinite slope (r ~ x^(3/4) for Haack), and the cosine-clustered
@@ -435,11 +452,12 @@ def _sharpened_tip(nose_x, body: BodyGeometry, machs) -> list:
     manual, NASA CR-3252, 1981, on panel inclination; the solver's check), and the
     whole Mach number fell to local inclination (EuRoC'22 Andromeda: 2 cal von
     Karman nose, 34 tip panels superinclined at Mach 1.5).  A conical tip is the
-    usual modelling of such a nose for linear theory; it changes the surface
-    over the first few per cent of the nose only (Andromeda at Mach 1.5: 5.4 %)."""
+    usual modelling of such a nose for linear theory; it changes the surface over the
+    first few per cent of the nose at low supersonic Mach numbers (Andromeda at Mach 1.5:
+    2.4 %), more at high ones (2.0: 15 %; Allen's 3-cal ogive at 3.95: 58 %)."""
     rn = body.radius_at(nose_x)
     sec = rn[1:] / np.maximum(nose_x[1:] - nose_x[0], 1e-300)
-    limit = nose_x[0] + TIP_MAX_FRACTION * (nose_x[-1] - nose_x[0])
+    limit = nose_x[0] + TIP_MAX_FRACTION * (nose_x[-1] - nose_x[0]) * (1 + 1e-9)
     for mach in sorted((m for m in machs if m > 1.0), reverse=True):
         ok = np.nonzero(math.sqrt(mach * mach - 1.0) * sec <= TIP_BT_MAX)[0]
         if not len(ok) or nose_x[int(ok[0]) + 1] > limit:
@@ -449,12 +467,13 @@ def _sharpened_tip(nose_x, body: BodyGeometry, machs) -> list:
     return [float(v) for v in nose_x]
 
 
-def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
+def _nose_stations(body: BodyGeometry, opt: MeshOptions):
+    """(stations [m] of the nose, tip first, conical tip applied; the nose's end x [m])."""
     x, r = body.x, body.r
     d = 2 * r.max()
-    # nose = up to the first station where r reaches its first plateau or max
     keep = [x[0]]
     n_nose = opt.scaled("n_nose")
+    # nose = up to the first station where r reaches its first plateau or max
     i_nose = int(np.argmax(r >= 0.999 * r.max()))
     x_nose = x[i_nose] if i_nose > 0 else x[0]
     if x_nose > x[0]:
@@ -462,6 +481,38 @@ def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
         keep.extend(x[0] + s[1:] * (x_nose - x[0]))
     if len(opt.tip_mach) and len(keep) > 2 and r[0] <= 1e-9 * d:
         keep = _sharpened_tip(np.array(keep), body, opt.tip_mach)
+    return keep, x_nose
+
+
+def tip_cone_fraction(body: BodyGeometry, opt: MeshOptions) -> float:
+    """The fraction [-] of the nose length a mesh with ``opt`` replaces by its
+    conical tip (:func:`_sharpened_tip`; 0: the stations as they are)."""
+    plain, x_nose = _nose_stations(body, replace(opt, tip_mach=()))
+    keep, _ = _nose_stations(body, opt)
+    if len(keep) == len(plain) or x_nose <= plain[0]:
+        return 0.0
+    return float((keep[1] - keep[0]) / (x_nose - keep[0]))
+
+
+def tip_options(geometry, options: MeshOptions, mach: float) -> MeshOptions:
+    """The mesh options of supersonic Mach ``mach`` [-] with its nose tip sharpened for
+    that Mach number alone (``tip_mach = (mach,)``): ``options`` itself when its
+    stations are the same (e.g. a sweep's shared mesh, sharpened for its lowest
+    supersonic Mach number, :func:`panair.sweep.supersonic_mesh_options`).  A tip
+    sharpened for a higher Mach number moves a lower one (a cone longer than it needs:
+    a nose + cylinder at Mach 1.5, CN(2 deg) -13 % with the tip of Mach 2.015)."""
+    own = replace(options, tip_mach=(float(mach),))
+    if own == options:
+        return options
+    a, _ = _nose_stations(geometry.body, own)
+    b, _ = _nose_stations(geometry.body, options)
+    return options if len(a) == len(b) and np.array_equal(a, b) else own
+
+
+def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
+    x, r = body.x, body.r
+    d = 2 * r.max()
+    keep, x_nose = _nose_stations(body, opt)
     step = opt.body_spacing * d / opt.refine
     # keep the corners of the profile after the nose (joints, transitions,
     # boattails: where the slope changes), not every station of a dense profile

@@ -60,7 +60,11 @@ supersonic Mach number whose shared mesh is near that coincidence (a run of equa
 body panels with a phase below :data:`panair.coincidence.COINCIDENCE_BAND`; there the
 solution passes every check but is off) is solved on its own body spacing from the
 start; the Mach numbers solved on their own mesh are listed in ``mach_remeshed``
-(their spacings in ``mach_remeshed_body_spacing_cal``).  The other exception is
+(their spacings in ``mach_remeshed_body_spacing_cal``).  So is a supersonic Mach number
+whose nose tip needs a longer conical tip than the shared mesh's: each one's tip is
+sharpened for it alone (:func:`panair.mesh.tip_options`; the shared mesh's for the lowest
+supersonic Mach number), the fraction of the nose its cone covers listed in
+``mach_tip_cone_fraction`` (0: none).  The other exception is
 recorded: a supersonic angle of attack above the largest one linear theory solves
 (it breaks at large angles: expansion past vacuum) continues the last solved one with Jorgensen's potential-flow shape
 (:func:`_solve_one`); those angles are listed per Mach number in the
@@ -95,7 +99,7 @@ from .a502 import find_panair, run_panair
 from .bridge import transonic_bridge
 from .mach_pool import MachPool
 from .coincidence import coincidence_free_options
-from .mesh import MeshOptions, RocketGeometry, mesh_rocket
+from .mesh import MeshOptions, RocketGeometry, mesh_rocket, tip_cone_fraction, tip_options
 from .solver import MACH_SUBSONIC_MAX, MACH_SUPERSONIC_MIN, build_panels, make_solver
 from .solver.panels import mirror_plane
 
@@ -249,9 +253,10 @@ class _OwnMesh:
         return panels
 
 
-def _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, rule, results,
+def _remesh_refused(geometry, tip_opt, symmetric, alpha, sref, lref, xref, rule, results,
                     extrapolated, cp_min, method, spacing, ckpt) -> None:
-    """Once more, on a body mesh free of the cross-body Mach-cone coincidence
+    """Once more, on a body mesh free of the cross-body Mach-cone coincidence (with the
+    Mach number's own nose tip, ``tip_opt`` [Mach -> options], :func:`panair.mesh.tip_options`)
     (:func:`panair.coincidence.coincidence_free_options` with no band: the candidate
     spacing whose runs' smallest phase is largest), every supersonic Mach number linear
     theory refused on the sweep's shared mesh (method "local-inclination"; one solved
@@ -261,8 +266,8 @@ def _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, rule,
     refused."""
     refused = (m for m, how in method.items() if how == "local-inclination" and m not in spacing)
     for m in sorted(refused):
-        opt_m = coincidence_free_options(geometry, opt_sup, m, band=math.inf)
-        if opt_m == opt_sup:
+        opt_m = coincidence_free_options(geometry, tip_opt[m], m, band=math.inf)
+        if opt_m == tip_opt[m]:
             continue
         try:
             job = (_OwnMesh(geometry, opt_m, symmetric, 0), m, alpha, sref, lref, xref, rule)
@@ -348,7 +353,7 @@ class _Checkpoint:
 
 
 #: bump when the solver's numbers change, so old checkpoints are not reused
-CHECKPOINT_VERSION = 4
+CHECKPOINT_VERSION = 5
 
 
 def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float,
@@ -407,6 +412,9 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     # (MeshOptions.for_mach; the same mesh when the options say so)
     opt = options or MeshOptions()
     opt_sup = supersonic_mesh_options(opt, sup)
+    # each supersonic Mach number's nose tip sharpened for it alone (the shared mesh's
+    # is the lowest one's; panair.mesh.tip_options)
+    tip_opt = {float(m): tip_options(geometry, opt_sup, float(m)) for m in sup}
     nets = mesh_rocket(geometry, symmetric=symmetric, options=opt)
     nets_sup = nets if opt_sup == opt else mesh_rocket(geometry, symmetric=symmetric,
                                                        options=opt_sup)
@@ -452,10 +460,11 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
         for f in geometry.fins:
             pad = max(2.0 * f.thickness, 0.05 * f.root_chord)
             body_mask &= ~((x_c > f.x_root - pad) & (x_c < f.x_root + f.root_chord + pad))
-    # a supersonic Mach number whose shared mesh is near a cross-body Mach-cone
-    # coincidence is solved on its own body spacing (panair.coincidence)
+    # a supersonic Mach number whose tip needs a longer cone than the shared mesh's, or
+    # whose shared mesh is near a cross-body Mach-cone coincidence, is solved on its own
+    # mesh (its own tip, panair.mesh.tip_options; its own body spacing, panair.coincidence)
     own = {float(m): o for m in builtin if m >= MACH_SUPERSONIC_MIN
-           for o in [coincidence_free_options(geometry, opt_sup, float(m))] if o != opt_sup}
+           for o in [coincidence_free_options(geometry, tip_opt[float(m)], float(m))] if o != opt_sup}
     jobs = [(_OwnMesh(geometry, own[float(m)], symmetric, panels_sup.n) if float(m) in own
              else panels_sup if m >= MACH_SUPERSONIC_MIN else panels, float(m), alpha, sref, lref,
              xref, pressure_rule, None if m >= MACH_SUPERSONIC_MIN else body_mask)
@@ -463,7 +472,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
 
     def store(m, arr, extra, cpm, how):
         results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-        if m in own:
+        if m in own and own[m].body_spacing != opt_sup.body_spacing:
             spacing[m] = own[m].body_spacing
         ckpt.save(m, arr, extra, cpm, how, spacing.get(m))
 
@@ -510,7 +519,9 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 if bar:
                     bar.update()
         for m in external:
-            results[float(m)] = _panair_one(nets_sup, float(m), alpha, sref, lref, xref, symmetric,
+            nets_m = (nets_sup if tip_opt[float(m)] == opt_sup else
+                      mesh_rocket(geometry, symmetric=symmetric, options=tip_opt[float(m)]))
+            results[float(m)] = _panair_one(nets_m, float(m), alpha, sref, lref, xref, symmetric,
                                             panair_workdir)
             extrapolated[float(m)], cp_min[float(m)], method[float(m)] = [], None, "panair"
             ckpt.save(float(m), results[float(m)], [], None, "panair")
@@ -519,7 +530,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     finally:
         if bar:
             bar.close()
-    _remesh_refused(geometry, opt_sup, symmetric, alpha, sref, lref, xref, pressure_rule,
+    _remesh_refused(geometry, tip_opt, symmetric, alpha, sref, lref, xref, pressure_rule,
                     results, extrapolated, cp_min, method, spacing, ckpt)
     # blunt fin leading edges: meshed as wedges without axial force where linear
     # theory cannot solve them (supersonic meshes); their drag is Niskanen's
@@ -549,8 +560,10 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
             "pressure_rule": pressure_rule,
             "mach_local_inclination": sorted(m for m, how in method.items()
                                              if how == "local-inclination"),
-            "mach_remeshed": sorted(spacing),
+            "mach_remeshed": sorted(set(spacing) | {m for m, o in tip_opt.items() if o != opt_sup}),
             "mach_remeshed_body_spacing_cal": {f"{m:g}": spacing[m] for m in sorted(spacing)},
+            "mach_tip_cone_fraction": {f"{m:g}": round(tip_cone_fraction(geometry.body, o), 6)
+                                       for m, o in sorted(tip_opt.items())},
             "mach_sonic_leading_edge": sorted(m for m, how in method.items()
                                               if how.startswith("linear-sonic-le")),
             "mach_cp_clipped": sorted(m for m, how in method.items() if how.endswith("-clipped")),
@@ -579,12 +592,14 @@ def _extend_alpha(values, alpha, alpha_ext, kind):
 
 
 def supersonic_mesh_options(options: MeshOptions | None, mach_sup) -> MeshOptions:
-    """The mesh options of a sweep's supersonic Mach numbers ``mach_sup`` [-]: finer fin
-    strips (:meth:`MeshOptions.for_mach`) and the nose tip subinclined at the largest of
-    them (``tip_mach``, :func:`panair.mesh._sharpened_tip`)."""
+    """The shared mesh options of a sweep's supersonic Mach numbers ``mach_sup`` [-]:
+    finer fin strips (:meth:`MeshOptions.for_mach`) and the nose tip subinclined at the
+    lowest of them (``tip_mach``, :func:`panair.mesh._sharpened_tip`; none when that
+    one needs no conical tip).  A higher Mach number that needs a longer conical tip is
+    solved on its own mesh (:func:`panair.mesh.tip_options`, :func:`sweep_pressure`)."""
     opt_sup = (options or MeshOptions()).for_mach(MACH_SUPERSONIC_MIN)
     if len(mach_sup):
-        opt_sup = replace(opt_sup, tip_mach=tuple(float(m) for m in mach_sup))
+        opt_sup = replace(opt_sup, tip_mach=(float(np.min(mach_sup)),))
     return opt_sup
 
 

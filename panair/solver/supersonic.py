@@ -46,7 +46,8 @@ Finner: <= 0.9 % of CN-alpha); their Cp is still returned for plotting.
 Nose correction: where linearised theory breaks on the nose (B tan delta
 -> 0.5; the reference README shows PANAIR's nose load growing without
 bound), forward-facing body panels take tangent-cone pressures
-(:mod:`.nose_correction`), blended in smoothly over 0.4 < B tan delta < 0.6.
+(:mod:`.nose_correction`), blended in smoothly over 0.4 < B tan delta < 0.6, each
+panel by its own inclination delta (:data:`NOSE_WEIGHT_PER_PANEL`).
 
 Checks that replace PANAIR's silent failures: every wetted panel must be
 subinclined (its plane inclined to the flow by less than the Mach angle)
@@ -84,6 +85,17 @@ MACH_SUPERSONIC_MAX = 5.0
 NOSE_BLEND = (0.4, 0.6)
 """B tan(nose half-angle) over which nose pressures go from linear theory to
 tangent-cone (smooth step)."""
+NOSE_WEIGHT_PER_PANEL = True
+"""True: each forward-facing body panel blends by its own B tan(delta) (the theory breaks
+locally, where the surface is steep for the Mach cone); False: every nose panel by the
+steepest one's, session 16.  The steepest is the tip ring of an ogive or Haack nose, a
+sliver whose slope the mesh sets (the cosine-clustered first station, or the conical tip
+of :func:`panair.mesh._sharpened_tip`), so the whole nose took tangent-cone pressures or
+linear ones by the tip's mesh.  Measured (session 17; TR R-100 fineness-3 noses, Stoney's
+free-flight pressure drag, each Mach number on its own tip, 24 points at Mach 1.2-3.4):
+mean |error| 0.0124 -> 0.0045, largest 0.072 -> 0.021 (LV-Haack Mach 1.2 +0.072 -> +0.021,
+1.4 +0.034 -> +0.006; von Karman 1.2 +0.043 -> +0.019, 1.4 +0.025 -> +0.002, 3.0 +0.002 ->
+0.000; power 3/4 3.4 -0.008 -> 0.000); cones (every nose panel at one angle) unchanged."""
 FD_OFFSET = 2e-2
 FD_STEP = 2e-2
 """Finite-difference step for the normal mass flux, x sqrt(panel area) [-]."""
@@ -630,7 +642,7 @@ class SupersonicSolver:
     nose : str
         ``"tangent-cone"`` (default): pressures on forward-facing body
         panels blend from linear theory to the tangent-cone value as
-        B tan(nose half-angle) goes from 0.4 to 0.6
+        B tan(the panel's inclination) goes from 0.4 to 0.6
         (:mod:`.nose_correction`); ``"linear"``: linear theory everywhere
         (PANAIR's behaviour).
     mirror : bool
@@ -805,13 +817,16 @@ class SupersonicSolver:
         self._nose = (self._nrm[:, 0] < -np.sin(np.radians(1.0))) \
             & ~np.isin(panels.network[keep], fins) & ~caps
         self._tangent_cone = TangentCone(mach) if nose == "tangent-cone" else None
-        # blend linear -> tangent-cone as B tan(delta_nose) goes 0.4 -> 0.6
+        # blend linear -> tangent-cone as B tan(delta) goes 0.4 -> 0.6, per panel
         # (linear theory breaks near 0.5: the reference README); our choice
         if np.any(self._nose):
-            d_nose = float(np.arcsin(np.clip(-self._nrm[self._nose, 0], 0, 1)).max())
+            d_nose = np.arcsin(np.clip(-self._nrm[self._nose, 0], 0, 1))
+            if not NOSE_WEIGHT_PER_PANEL:
+                d_nose = np.full_like(d_nose, d_nose.max())
             t = np.clip((self.B * np.tan(d_nose) - NOSE_BLEND[0])
                         / (NOSE_BLEND[1] - NOSE_BLEND[0]), 0.0, 1.0)
-            self.nose_weight = float(t * t * (3 - 2 * t))
+            self._nose_w = t * t * (3 - 2 * t)
+            self.nose_weight = float(self._nose_w.max())
         else:
             self.nose_weight = 0.0
         self._cp_max = 1.5 * _stagnation_cp(mach)
@@ -884,7 +899,7 @@ class SupersonicSolver:
             cp = pressure_coefficient(u, v[k], self.mach, self.pressure_rule)
             if self._tangent_cone is not None and self.nose_weight > 0:
                 inc = np.arcsin(np.clip(-(self._nrm[self._nose] @ v[k]), -1.0, 1.0))
-                w = self.nose_weight
+                w = self._nose_w
                 cp[self._nose] = (1 - w) * cp[self._nose] + w * self._tangent_cone.cp(inc)
             cap_cp = cp[self._caps & ~self._closure]
             # a pointed tip's closure slivers have a degenerate gradient stencil (their

@@ -241,8 +241,8 @@ def _haack(fineness, n=400):
 def test_haack_tip_is_meshed_subinclined(mach):
     """A 2-calibre von Karman nose: the cosine-clustered first panel is steeper
     than the Mach cone (B tan > 0.951: the solver refuses it); with tip_mach the
-    first panel's secant obeys B tan <= 0.93 when a tip of <= 10 % of the nose
-    does it, and the stations are unchanged otherwise."""
+    first panel's secant obeys B tan <= 0.93 when a tip of at most TIP_MAX_FRACTION
+    of the nose does it, and the stations are unchanged otherwise."""
     from dataclasses import replace
 
     from panair.mesh import TIP_BT_MAX, TIP_MAX_FRACTION, _axial_stations
@@ -256,7 +256,7 @@ def test_haack_tip_is_meshed_subinclined(mach):
     elif len(tipped) < len(plain):
         assert b * sec(tipped) <= TIP_BT_MAX and tipped[1] <= TIP_MAX_FRACTION * 4.0
         np.testing.assert_array_equal(tipped[1:], plain[len(plain) - len(tipped) + 1:])
-    else:                                            # no tip of <= 10 % of the nose does it
+    else:                                            # no tip within the limit does it
         near = plain[1:][plain[1:] <= TIP_MAX_FRACTION * 4.0]
         assert np.all(b * np.interp(near, g.x, g.r) / near > TIP_BT_MAX)
         np.testing.assert_array_equal(tipped, plain)

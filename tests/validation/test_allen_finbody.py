@@ -108,6 +108,26 @@ Mach cone.  The thin-wing model with tip diaphragms (supersonic.THIN_WING, off b
 default, its docstring has the numbers) gives fin 10 -6.2 / +1.1 / +4.3 / +13.2 / +10.1
 % at Mach 1.2 ... 2.96 and a factor of 2.46 / 2.10 / 2.24.
 
+Session 17, Mach 3.95 (and fin 1 at 2.96) fell to local inclination on every fin set
+(tangent cone / wedge, no fin-body carry-over; not bounded): the 3-cal ogive's tip needs
+a conical tip over 58 % of the nose there, and the limit was 10 %.  With the limit at 60 %
+(panair.mesh.TIP_MAX_FRACTION, measured against TR R-100's nose drag), each Mach number's
+tip sharpened for it alone (panair.mesh.tip_options) and the nose pressures blended to
+tangent-cone per panel (panair.solver.supersonic.NOSE_WEIGHT_PER_PANEL; before, the whole
+nose by its steepest panel, the tip ring), linear theory solves Mach 3.95 on fins 5, 9, 10,
+12 (fin 1's thick fin stays superinclined at 2.96 and 3.95).  Before -> tip alone -> with
+the per-panel blend: CN-alpha fin 5 -23.0 -> +29.1 -> +33.6 %, fin 9 -13.2 -> +47.2 ->
++50.9 %, fin 10 -24.6 -> +14.7 -> +19.2 %, fin 12 -24.1 -> +23.8 -> +26.4 %; CP -0.99 ->
++0.47 -> +0.32, -1.02 -> +0.13 -> -0.00, -1.13 -> +0.17 -> +0.01, -0.66 -> +0.16 -> +0.05
+cal; CA0 +29.1 -> +33.5 -> +32.5, +13.5 -> +17.7 -> +16.8, +5.5 -> +10.6 -> +9.4, +44.2 ->
++48.5 -> +47.5 %.  The CA0 excess there was in the local-inclination rows too (the fins'
+blunt-edge and wedge drag, not the lift solution); the CN-alpha excess is linear theory's
+fin lift, high on fin 9 at 2.3-2.96 too (the tunnel's CN-alpha drops 26 % from Mach 2 to
+2.3; session 15's tip diagnosis): Mach 3.95 has its own bounds (CA0 0.55, CN-alpha 0.6, CP
+0.45 cal), the others keep theirs.  Mach 1.6-2.96 (19 rows, fins 1 to 2.3): mean |error|
+CN-alpha 15.8 -> 17.7 %, CP 0.131 -> 0.117 cal (largest 0.69 -> 0.46), CA0 9.9 -> 9.7 %
+(the per-panel blend; the tip alone moves them by at most 0.3 %).
+
 Independent method (subsonic, potential part only): nose 2/rad (slender-body theory)
 plus the fin pair, 2 x the isolated fin's slope (Diederich, as
 :func:`ironbark_opt.aero.barrowman.single_fin_cn_alpha`) x (K_W(B) + K_B(W)) =
@@ -255,7 +275,12 @@ def test_allen_fin_body(fin, tmp_path):
               f"{float(r['CNa_per_rad']):6.2f}/{cna:6.2f} {100 * e_cn:+6.1f}   "
               f"{float(r['xcp_cal']):5.2f}/{xcp:5.2f} {d_x:+5.2f}  {'ok' if good else 'NOT MET'}")
         if m not in t.metadata["mach_local_inclination"]:        # linear theory solved it
-            worst.append((abs(e_ca), abs(e_cn), abs(d_x)))
+            # Mach 3.95 (linear theory since session 17) bounded on its own: its CA0 and
+            # CN-alpha excess is the fins' (module docstring), its CP within 0.32 cal
+            if m < 3.5:
+                worst.append((abs(e_ca), abs(e_cn), abs(d_x)))
+            else:
+                assert abs(e_ca) < 0.55 and abs(e_cn) < 0.6 and abs(d_x) < 0.45
     print(f"{fin}: {sum(ok)} of {len(ok)} Mach numbers meet all three goals")
     print(f"{fin}: local-inclination Mach numbers (not bounded): {t.metadata['mach_local_inclination']}")
     w = np.max(np.array(worst), axis=0)

@@ -25,7 +25,20 @@ their data stay near the Mach 1.2 value and the model is within -0.024 ... +0.02
 Mach 1.4 was refused by linear theory on the tables' shared mesh (a Mach-cone coincidence
 across the cylinder, tests/unit/test_panair_supersonic_coincidence.py) and fell to local
 inclination; re-meshed (panair.sweep._remesh_refused) it is solved: von Karman +0.027 ->
-+0.005, LV-Haack +0.041 -> +0.019, parabolic 3/4 +0.023 -> +0.005, power 3/4 +0.004 -> -0.002.  The
++0.005, LV-Haack +0.041 -> +0.019, parabolic 3/4 +0.023 -> +0.005, power 3/4 +0.004 -> -0.002.
+Session 17: each supersonic Mach number's conical tip is its own (panair.mesh.tip_options;
+before, every one had the tip of the table's largest Mach number whose cone fitted in 10 %
+of the nose), up to 60 % of the nose (von Karman Mach 3.0, local inclination -> linear
+theory: -0.0017 -> +0.0000), and the nose's tangent-cone blend goes per panel
+(panair.solver.supersonic.NOSE_WEIGHT_PER_PANEL; before, the steepest panel, the tip ring,
+set it for the whole nose, so a Mach number's own steep tip alone made LV-Haack at Mach 1.2
++0.025 -> +0.072).  Linear theory on the pointed noses from Mach 1.6: -0.0077 ... +0.0217
+(10 points) -> -0.0016 ... +0.0099 (11 points); von Karman 1.2 / 1.4 / 1.6 / 2.0 +0.020 /
++0.005 / +0.012 / +0.006 -> +0.019 / +0.002 / -0.002 / +0.001, LV-Haack 1.2 / 1.4 / 1.6 /
+2.0 +0.025 / +0.019 / +0.022 / +0.009 -> +0.021 / +0.006 / +0.003 / -0.000, power 3/4 2.8
+-0.008 -> +0.001; the blunt-tipped noses: elliptical Mach 1.2 / 2.0 / 2.4 +0.168 / +0.084 /
++0.062 -> +0.030 / +0.047 / +0.016, power 1/2 +0.037 ... +0.050 -> +0.014 ... +0.025, power
+1/4 +0.08 ... +0.20 -> -0.10 ... +0.19 (1.6 now linear theory: +0.157 -> +0.190).  The
 asserts bound that measured state (a regression, or the area-rule anchor back on the
 tangent noses, fails); the goal is printed per row.  The empirical path's nose drag
 (McCoy's MC DRAG head drag, :func:`ironbark_opt.aero.empirical_drag.nose_pressure_ca`) is
@@ -109,10 +122,10 @@ def test_nose_pressure_drag_vs_tr_r100(comparison):
     print(f"pointed noses, Mach 1.0-1.1 (transonic model): diff "
           f"{son['ours'].sub(son['measured']).min():+.4f} ... {son['ours'].sub(son['measured']).max():+.4f}")
     assert len(sup) >= 8
-    # measured state (module docstring): linear theory on the pointed noses within 0.025 of the
-    # data above Mach 1.6; the transonic model within -0.03 ... +0.035 of the data at Mach
+    # measured state (module docstring): linear theory on the pointed noses within 0.015 of the
+    # data from Mach 1.6 (0.025 until session 17's per-panel nose blend: +0.0217 then); the transonic model within -0.03 ... +0.035 of the data at Mach
     # 1.0-1.1 (the area-rule anchor on the tangent noses: up to +0.10)
-    assert np.all(np.abs(sup["ours"] - sup["measured"]) < 0.025)
+    assert np.all(np.abs(sup["ours"] - sup["measured"]) < 0.015)
     assert np.all(son["ours"] - son["measured"] > -0.03)
     assert np.all(son["ours"] - son["measured"] < 0.035)
     # below the drag rise (measured 0) the smooth noses have little pressure drag (McCoy's
