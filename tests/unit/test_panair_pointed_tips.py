@@ -69,17 +69,21 @@ def test_closure_panels_are_the_pointed_tips_sideways_slivers():
     assert not equal_strips.any()                   # its last strip's triangles face the sides
 
 
+def _apex():
+    """ICL APEX's panel geometry, its symmetry, Sref [m^2] and the calibre [m]."""
+    from ironbark_opt.vehicle import load_rocket_geometry
+    from panair.geometry_adapter import from_rocket, is_symmetric
+    rk, _ = load_rocket_geometry(APEX)
+    geom = from_rocket(rk)
+    return geom, is_symmetric(geom), rk.reference_area(), 2 * rk.reference_radius()
+
+
 @pytest.mark.slow
 def test_apex_pointed_fins_solve_linear_at_mach_2():
     from dataclasses import replace
 
-    from ironbark_opt.vehicle import load_rocket_geometry
-    from panair.geometry_adapter import from_rocket, is_symmetric
     from panair.solver.local_inclination import LocalInclinationSolver
-    rk, _ = load_rocket_geometry(APEX)
-    geom = from_rocket(rk)
-    sym = is_symmetric(geom)
-    sref, lref = rk.reference_area(), 2 * rk.reference_radius()
+    geom, sym, sref, lref = _apex()
     res = {}
     for refine in (1.0, 1.3):
         opt = replace(MeshOptions(refine=refine).for_mach(1.2), tip_mach=(2.0,))
@@ -130,12 +134,7 @@ def test_apex_pointed_fins_subsonic_pressure_bounded_and_converged():
     hundred, panair.solver.subsonic.CP_MAX; measured 1.2 / 2.7 / 6.6, the body at the
     fin roots 18.9; sine strips: 1.5e3 / 2.7e3 / 1.8e4, refused), and CN-alpha within
     1 % of 24 strips' (measured 8.342 vs 8.388 /rad, -0.55 %)."""
-    from ironbark_opt.vehicle import load_rocket_geometry
-    from panair.geometry_adapter import from_rocket, is_symmetric
-    rk, _ = load_rocket_geometry(APEX)
-    geom = from_rocket(rk)
-    sym = is_symmetric(geom)
-    sref, lref = rk.reference_area(), 2 * rk.reference_radius()
+    geom, sym, sref, lref = _apex()
     cna = {}
     for n_span in (12, 24):
         panels = build_panels(mesh_rocket(geom, symmetric=sym, options=MeshOptions(n_span=n_span, n_chord=20)),
