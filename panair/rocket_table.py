@@ -43,18 +43,14 @@ def default_mach_grid(peak_mach: float | None = None) -> np.ndarray:
     return np.array(grid)
 
 
-#: Largest angle [rad] between a nose's profile and the body at its shoulder for the nose
-#: to count as ogival (tangent at the shoulder; :mod:`panair.transonic`, item 4)
-OGIVAL_JOINT_MAX = math.radians(1.0)
-
-
 def ogival_nose(rocket):
     """``(x_end [m], tau [-], area_ratio [-])`` of the rocket's nose when it meets the
-    body tangentially (joint angle below :data:`OGIVAL_JOINT_MAX`: tangent ogive, Haack /
+    body tangentially (joint angle at most
+    :data:`ironbark_opt.aero.empirical_drag.OGIVAL_JOINT_MAX`: tangent ogive, Haack /
     von Karman, parabolic K = 1, elliptical), else None: its end aft of the tip, base
     diameter / length and base area / reference area (McCoy's transonic head drag,
     :mod:`panair.transonic` item 4)."""
-    from ironbark_opt.aero.empirical_drag import joint_half_angle
+    from ironbark_opt.aero.empirical_drag import OGIVAL_JOINT_MAX, joint_half_angle
     from ironbark_opt.rocket.nose import NoseCone
     front = rocket.front_component()
     if not isinstance(front, NoseCone) or joint_half_angle(front) > OGIVAL_JOINT_MAX:

@@ -253,17 +253,17 @@ class _OwnMesh:
         return panels
 
 
-def _remesh_refused(geometry, tip_opt, symmetric, alpha, sref, lref, xref, rule, results,
-                    extrapolated, cp_min, method, spacing, ckpt) -> None:
+def _remesh_refused(geometry, tip_opt, symmetric, alpha, sref, lref, xref, rule, method,
+                    spacing, store) -> None:
     """Once more, on a body mesh free of the cross-body Mach-cone coincidence (with the
     Mach number's own nose tip, ``tip_opt`` [Mach -> options], :func:`panair.mesh.tip_options`)
     (:func:`panair.coincidence.coincidence_free_options` with no band: the candidate
     spacing whose runs' smallest phase is largest), every supersonic Mach number linear
     theory refused on the sweep's shared mesh (method "local-inclination"; one solved
-    on its own mesh already is not retried); its results replaced (and checkpointed)
-    where linear theory solves it there, its body spacing [calibres] entered in
-    ``spacing``.  Panels steeper than the Mach cone (no body spacing helps) stay
-    refused."""
+    on its own mesh already, ``spacing``, is not retried); its results replaced where
+    linear theory solves it there, by ``store(mach, coefficients, extrapolated, cp_min,
+    method, body_spacing)`` (:func:`sweep_pressure`'s: results, checkpoint, ``spacing``).
+    Panels steeper than the Mach cone (no body spacing helps) stay refused."""
     refused = (m for m, how in method.items() if how == "local-inclination" and m not in spacing)
     for m in sorted(refused):
         opt_m = coincidence_free_options(geometry, tip_opt[m], m, band=math.inf)
@@ -276,9 +276,7 @@ def _remesh_refused(geometry, tip_opt, symmetric, alpha, sref, lref, xref, rule,
             continue
         if how == "local-inclination":
             continue
-        results[mm], extrapolated[mm], cp_min[mm], method[mm] = arr, extra, cpm, how
-        spacing[mm] = opt_m.body_spacing
-        ckpt.save(mm, arr, extra, cpm, how, opt_m.body_spacing)
+        store(mm, arr, extra, cpm, how, opt_m.body_spacing)
 
 
 def _local_inclination(panels, mach, alphas, sref, lref, xref):
@@ -470,11 +468,16 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
              xref, pressure_rule, None if m >= MACH_SUPERSONIC_MIN else body_mask)
             for m in builtin]
 
-    def store(m, arr, extra, cpm, how):
+    def store(m, arr, extra, cpm, how, body_spacing=None):
+        """One Mach number's results, checkpointed; ``body_spacing`` [cal] of its own
+        mesh (None: the shared one's; entered in ``spacing`` where it differs)."""
         results[m], extrapolated[m], cp_min[m], method[m] = arr, extra, cpm, how
-        if m in own and own[m].body_spacing != opt_sup.body_spacing:
-            spacing[m] = own[m].body_spacing
+        if body_spacing is not None and body_spacing != opt_sup.body_spacing:
+            spacing[m] = body_spacing
         ckpt.save(m, arr, extra, cpm, how, spacing.get(m))
+
+    def store_own(m, arr, extra, cpm, how):
+        store(m, arr, extra, cpm, how, own[m].body_spacing if m in own else None)
 
     # longest first (supersonic: more panels and four potential evaluations per
     # matrix), so the last Mach numbers to finish are short ones and the workers
@@ -496,7 +499,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 done = run_chunks(ex, _solve_one, [(job,) for job in jobs], label="panel",
                                   on_chunk=lambda i, k: bar.update() if bar else None)
             for m, arr, extra, cpm, how in done:
-                store(m, arr, extra, cpm, how)
+                store_own(m, arr, extra, cpm, how)
         elif pool is not None or (workers > 1 and len(jobs) > 1):
             # Mach numbers in parallel (panair.mach_pool: one BLAS thread per worker, the
             # costliest first), in a pool shared with other sweeps or this sweep's own;
@@ -506,7 +509,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
                 try:
                     for fut in as_completed(futures):
                         m, arr, extra, cpm, how = fut.result()
-                        store(m, arr, extra, cpm, how)
+                        store_own(m, arr, extra, cpm, how)
                         if bar:
                             bar.update()
                 finally:
@@ -515,23 +518,21 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
         else:
             for job in jobs:
                 m, arr, extra, cpm, how = _solve_one(job)
-                store(m, arr, extra, cpm, how)
+                store_own(m, arr, extra, cpm, how)
                 if bar:
                     bar.update()
         for m in external:
             nets_m = (nets_sup if tip_opt[float(m)] == opt_sup else
                       mesh_rocket(geometry, symmetric=symmetric, options=tip_opt[float(m)]))
-            results[float(m)] = _panair_one(nets_m, float(m), alpha, sref, lref, xref, symmetric,
-                                            panair_workdir)
-            extrapolated[float(m)], cp_min[float(m)], method[float(m)] = [], None, "panair"
-            ckpt.save(float(m), results[float(m)], [], None, "panair")
+            store(float(m), _panair_one(nets_m, float(m), alpha, sref, lref, xref, symmetric,
+                                        panair_workdir), [], None, "panair")
             if bar:
                 bar.update()
     finally:
         if bar:
             bar.close()
     _remesh_refused(geometry, tip_opt, symmetric, alpha, sref, lref, xref, pressure_rule,
-                    results, extrapolated, cp_min, method, spacing, ckpt)
+                    method, spacing, store)
     # blunt fin leading edges: meshed as wedges without axial force where linear
     # theory cannot solve them (supersonic meshes); their drag is Niskanen's
     sharpened = [float(m) for m in builtin_all if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0

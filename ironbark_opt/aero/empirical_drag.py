@@ -138,10 +138,16 @@ def _nose_joint_ca(nose, mach, a_ref: float) -> np.ndarray:
     return np.where(m < 1.0, sub, sub * stagnation_ratio(m))
 
 
+#: Largest angle [rad] between a nose's profile and the body at its shoulder for the nose
+#: to meet the body tangentially (an ogival nose: McCoy's R_T / R = 0 here, and the panel
+#: tables' transonic nose model, :func:`panair.rocket_table.ogival_nose`)
+OGIVAL_JOINT_MAX = float(np.radians(1.0))
+
+
 def head_shape_ratio(nose) -> float:
     """McCoy's head-shape parameter R_T / R [-] of a nose (MC DRAG: 0 a tangent ogive, 1 a
     cone): a secant ogive's tangent-ogive radius over its own; a cone 1; a nose meeting
-    the body tangentially (joint angle below 1 deg) 0; any other shape (power series,
+    the body tangentially (joint angle below :data:`OGIVAL_JOINT_MAX`) 0; any other shape (power series,
     parabolic K < 1) its joint angle over the half-angle of the cone of the same length
     and base (our interpolation between McCoy's two ends)."""
     if nose.shape == "conical":
@@ -150,7 +156,7 @@ def head_shape_ratio(nose) -> float:
         rho_t = (nose.radius ** 2 + nose.length ** 2) / (2.0 * nose.radius)
         return float(np.clip(rho_t / nose.ogive_radius, 0.0, 1.0))
     joint = joint_half_angle(nose)
-    if joint < np.radians(1.0):
+    if joint < OGIVAL_JOINT_MAX:
         return 0.0
     return float(np.clip(joint / np.arctan(nose.radius / nose.length), 0.0, 1.0))
 
