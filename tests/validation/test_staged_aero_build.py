@@ -30,12 +30,12 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from ironbark_opt.aero import barrowman
-from ironbark_opt.aero.model import lift_geometry
 from ironbark_opt.aero.table import AeroTable
 from ironbark_opt.cli import main
 from ironbark_opt.openrocket import read_ork
 from ironbark_opt.openrocket.stage_tables import configurations
+
+from barrowman_reference import barrowman_cna_cp
 
 ORK = Path(__file__).parents[1] / "data" / "ork" / "Two stage high power rocket.ork"
 MACH = 0.3
@@ -50,23 +50,6 @@ def _slope_and_cp(table: AeroTable, mach: float) -> tuple[float, float]:
     cn = float(table.evaluate("CN_pressure", mach, a)) - float(table.evaluate("CN_pressure", mach, 0.0))
     cm = float(table.evaluate("Cm_pressure", mach, a)) - float(table.evaluate("Cm_pressure", mach, 0.0))
     return cn / a, table.moment_reference_x - cm / cn * table.reference_length
-
-
-def _barrowman(rocket, mach: float, fins_only_from: float | None = None,
-               carryover: bool = False) -> tuple[float, float]:
-    """(CN-alpha [1/rad], CP [m]) by Barrowman; with ``fins_only_from`` [m] the fins
-    whose CP lies aft of it only; with ``carryover`` each fin set's lift times
-    K_W(B) + K_B(W) over Barrowman's K_T(B) (the body's carry-over)."""
-    geo = lift_geometry(rocket)
-    comps = geo.components(mach, rocket.reference_area())
-    scale = [1.0] * len(geo.bodies) + [
-        barrowman.slender_body_interference(f.planform.span, f.body_radius)
-        / barrowman.interference_factor(f.planform.span, f.body_radius) if carryover else 1.0
-        for f in geo.fins]
-    pairs = [(float(c.cn_alpha) * k, float(c.x_cp)) for c, k in zip(comps, scale)
-             if fins_only_from is None or c.x_cp > fins_only_from]
-    cna = sum(n for n, _ in pairs)
-    return cna, sum(n * x for n, x in pairs) / cna
 
 
 def test_two_stage_build_and_flight(tmp_path):
@@ -85,8 +68,8 @@ def test_two_stage_build_and_flight(tmp_path):
     d = 2 * conf["sustainer"].reference_radius()
 
     cna_s, cp_s = _slope_and_cp(sus, MACH)
-    cna_b, cp_b = _barrowman(conf["sustainer"], MACH, carryover=True)
-    cna_0, _ = _barrowman(conf["sustainer"], MACH)
+    cna_b, cp_b = barrowman_cna_cp(conf["sustainer"], MACH, carryover=True)
+    cna_0, _ = barrowman_cna_cp(conf["sustainer"], MACH)
     print(f"\nsustainer at Mach {MACH}: CN-alpha {cna_s:.2f} /rad (Barrowman with carry-over {cna_b:.2f}, "
           f"{100 * (cna_s / cna_b - 1):+.1f} %; tolerance 12 %; Barrowman alone {cna_0:.2f}), CP {cp_s:.4f} m "
           f"(Barrowman {cp_b:.4f} m, {(cp_s - cp_b) / d:+.3f} cal; tolerance 0.3 cal)")
@@ -94,7 +77,7 @@ def test_two_stage_build_and_flight(tmp_path):
     assert abs(cp_s - cp_b) <= 0.3 * d
 
     cna_k, cp_k = _slope_and_cp(stack, MACH)
-    fins_b, _ = _barrowman(conf["stack"], MACH, fins_only_from=conf["sustainer"].length())
+    fins_b, _ = barrowman_cna_cp(conf["stack"], MACH, fins_only_from=conf["sustainer"].length())
     print(f"stack: CN-alpha {cna_k:.2f} /rad, CP {cp_k:.4f} m (sustainer's {cp_s:.4f} m); booster fins add "
           f"{cna_k - cna_s:.2f} /rad (Barrowman isolated {fins_b:.2f} /rad; bound 1.25x)")
     assert cp_k > cp_s + 0.5 * d
