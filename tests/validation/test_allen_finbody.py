@@ -128,6 +128,11 @@ fin lift, high on fin 9 at 2.3-2.96 too (the tunnel's CN-alpha drops 26 % from M
 CN-alpha 15.8 -> 17.7 %, CP 0.131 -> 0.117 cal (largest 0.69 -> 0.46), CA0 9.9 -> 9.7 %
 (the per-panel blend; the tip alone moves them by at most 0.3 %).
 
+Session 18, a refused supersonic Mach number is tried on a coarser and a finer mesh
+before local inclination (panair.sweep.REMESH_REFINE): fin 1 at Mach 2.96 now solves by
+linear theory (CN-alpha -8.6 -> +24.9 %, CP -0.81 -> +0.31 cal, CA0 -2.2 -> -4.2 %, in
+line with fin 1's +19 ... +45 % at Mach 1.2-2.3); its Mach 3.95 stays on local inclination.
+
 Independent method (subsonic, potential part only): nose 2/rad (slender-body theory)
 plus the fin pair, 2 x the isolated fin's slope (Diederich, as
 :func:`ironbark_opt.aero.barrowman.single_fin_cn_alpha`) x (K_W(B) + K_B(W)) =
