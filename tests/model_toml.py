@@ -39,3 +39,15 @@ nozzle_x = {(nose_calibres + body_calibres) * d}
 [launch]
 rail_length = 3.0
 """
+
+
+def model_panel_geometry(folder, name: str, **kw):
+    """(Rocket, panair RocketGeometry, symmetric) of :func:`model_toml` ``name`` with ``kw``,
+    written to ``folder`` (a temp dir) and read back as ``aero build`` reads a rocket file."""
+    from ironbark_opt.vehicle import load_rocket_geometry
+    from panair.geometry_adapter import from_rocket, is_symmetric
+    path = Path(folder) / f"{name.replace(' ', '_')}.toml"
+    path.write_text(model_toml(name, **kw))
+    rk, _ = load_rocket_geometry(path)
+    geom = from_rocket(rk)
+    return rk, geom, is_symmetric(geom)

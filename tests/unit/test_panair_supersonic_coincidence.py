@@ -51,7 +51,7 @@ import pytest
 
 from ironbark_opt.errors import SolverError
 
-from model_toml import model_toml
+from model_toml import model_panel_geometry
 
 D = 0.1
 
@@ -60,18 +60,13 @@ D = 0.1
 
 @pytest.fixture(scope="module")
 def body(tmp_path_factory):
-    from ironbark_opt.vehicle import load_rocket_geometry
-    from panair.geometry_adapter import from_rocket, is_symmetric
     from panair.mesh import MeshOptions, mesh_rocket
     from panair.solver import build_panels
     from panair.sweep import supersonic_mesh_options
 
-    path = tmp_path_factory.mktemp("coinc") / "vk.toml"
-    path.write_text(model_toml("von Karman fineness 3 + 7 cal", calibre=D, nose_shape="von_karman",
-                               nose_calibres=3, body_calibres=7, cg_x=5 * D))
-    rk, _ = load_rocket_geometry(path)
-    geom = from_rocket(rk)
-    sym = is_symmetric(geom)
+    rk, geom, sym = model_panel_geometry(tmp_path_factory.mktemp("coinc"), "von Karman fineness 3 + 7 cal",
+                                         calibre=D, nose_shape="von_karman", nose_calibres=3,
+                                         body_calibres=7, cg_x=5 * D)
 
     def panels(tip_mach=(1.2,), **kw):
         opt = supersonic_mesh_options(MeshOptions(**kw), np.array(tip_mach))

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from model_toml import model_toml
+from model_toml import model_panel_geometry
 
 D = 0.1
 MACH = 1.5
@@ -20,14 +20,10 @@ ALPHA = np.radians([0.0, 2.0])
 
 @pytest.fixture(scope="module")
 def geometry(tmp_path_factory):
-    from ironbark_opt.vehicle import load_rocket_geometry
-    from panair.geometry_adapter import from_rocket, is_symmetric
-    path = tmp_path_factory.mktemp("refine") / "vk.toml"
-    path.write_text(model_toml("von Karman fineness 3 + 5 cal", calibre=D, nose_shape="von_karman",
-                               nose_calibres=3, body_calibres=5, cg_x=4 * D))
-    rk, _ = load_rocket_geometry(path)
-    geom = from_rocket(rk)
-    return geom, is_symmetric(geom), rk.reference_area()
+    rk, geom, sym = model_panel_geometry(tmp_path_factory.mktemp("refine"), "von Karman 3 + 5 cal",
+                                         calibre=D, nose_shape="von_karman", nose_calibres=3,
+                                         body_calibres=5, cg_x=4 * D)
+    return geom, sym, rk.reference_area()
 
 
 def test_refused_mach_solved_on_a_coarser_mesh_and_resumed(geometry, tmp_path, monkeypatch):
