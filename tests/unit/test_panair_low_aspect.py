@@ -14,8 +14,8 @@ fin inside its tip's Mach cone.  Two cases:
   body alone's (the fins and their interference on the body, the body ahead of the fins
   unchanged by causality) against the Mach box's wing alone times the slender-body
   fin-body factor K_W(B) + K_B(W) = (1 + r/s)^2 = 2.25 (Pitts, Nielsen & Kaattari, NACA
-  Report 1307, 1957, whose supersonic method keeps K_W(B) and takes K_B(W) at most the
-  slender value, so this is an upper estimate away from B A -> 0).  Subsonic (Mach 0.9)
+  Report 1307, 1957; their supersonic K_B(W) tends to the slender value as B A -> 0, so
+  the reference is best at Mach 1.2, B A = 0.44, approximate above).  Subsonic (Mach 0.9)
   the same difference is 4.49 /rad, slender-body theory 4.50.  Measured by part at Mach
   1.2 / 1.6 / 2.0 (session 18), fins + body beside and behind them, per rocket reference
   area: default model 7.93 / 6.87 / 6.21 /rad (+66 / +25 / +14 % of 4.79 / 5.51 / 5.47),
