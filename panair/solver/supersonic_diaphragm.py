@@ -72,10 +72,15 @@ def _fin_mid_plane(panels, cen_all, f, size: float):
     mid = np.abs((pts - c0) @ e_t) < 1e-6 * size          # the edges in the mid-plane
     s = np.round(pts[mid] @ e_s, 9)
     x = pts[mid, 0]
-    st = np.unique(s)
+    # the leading edge: mid-plane corners of forward-facing panels (the leading-edge
+    # wedge or bevel); the trailing edge's stations need not be the leading edge's
+    _, _, nrm_on, _ = planar_corners(panels.corners[on])
+    fwd = np.repeat(nrm_on[:, 0] < 0.0, panels.corners.shape[1])
+    lead = fwd[mid]
+    st = np.unique(s[lead])
     if len(st) < 2:
         return None
-    return on, c0, e_t, e_s, pts, s, x, st, np.array([x[s == v].min() for v in st])
+    return on, c0, e_t, e_s, pts, s, x, st, np.array([x[lead & (s == v)].min() for v in st])
 
 
 def diaphragm_sheets(panels, keep, fins, B: float) -> WakeSheets | None:
