@@ -184,6 +184,15 @@ class FinGeometry:
             return fraction * self.sweep
         return np.interp(fraction, self.outline[0], self.outline[1])
 
+    @property
+    def leading_edge_kind(self) -> str:
+        """``square`` for a square section and a hexagon with ``le_bevel`` 0 (a square
+        leading edge), else the section (as
+        :attr:`ironbark_opt.rocket.fin_sections.FinSection.leading_edge_kind`)."""
+        if self.section == "double_wedge" and self.le_bevel == 0.0:
+            return "square"
+        return self.section
+
     def trailing_edge_closure(self, chord) -> float:
         """Chordwise length [m] of the wedge that closes a blunt trailing edge
         (square, rounded, or a hexagon with te_bevel = 0) for the panel
@@ -214,7 +223,23 @@ class FinGeometry:
         unchanged.  The wedge's panels carry no
         axial force: linear supersonic theory cannot solve a blunt edge (it is
         superinclined), so its drag is modelled separately (panair.sweep)."""
-        if self.section not in ("square", "rounded", "airfoil") or wedge <= 0:
+        if wedge <= 0:
+            return self
+        if self.section == "double_wedge" and self.le_bevel is not None:
+            # a hexagon with one edge unbevelled (bevel 0: a square edge, e.g. a plate with
+            # only its leading edge bevelled) has that edge's square face: superinclined at
+            # the leading edge, and at the trailing edge a step that left the tip caps
+            # Mach-inclined and the influence matrix singular (Basic Finner planform with a
+            # bevelled leading edge and a square trailing edge: Mach 1.8 singular, 2.4 and
+            # 3.1 superinclined, all to local inclination).  Each square edge gets the
+            # square section's wedge and its flags, the bevelled one is kept.
+            le, te = self.le_bevel, self.te_bevel
+            if le > 0 and te > 0:
+                return self
+            return replace(self, le_bevel=le if le > 0 else wedge * self.thickness,
+                           te_bevel=te if te > 0 else wedge * self.thickness,
+                           blunt_leading_edge=le == 0, blunt_trailing_edge=te == 0)
+        if self.section not in ("square", "rounded", "airfoil"):
             return self
         if self.section == "airfoil":
             # a round-nosed NACA 00xx section: the same leading-edge wedge, and a sharp

@@ -131,7 +131,7 @@ def body_fineness(body) -> float:
 
 
 def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.ndarray:
-    """Pressure drag of blunt (square, rounded) fin leading edges [-] on ``sref``
+    """Pressure drag of blunt (square, also an unbevelled hexagon edge; rounded) fin leading edges [-] on ``sref``
     [m^2], for the Mach numbers [-] whose mesh replaces them by a wedge
     (:meth:`panair.mesh.FinGeometry.sharpened`: supersonic).
 
@@ -144,10 +144,10 @@ def blunt_leading_edge_ca(geometry: RocketGeometry, mach, sref: float) -> np.nda
     m = np.asarray(mach, float)
     ca = np.zeros_like(m)
     for f in geometry.fins:
-        if f.section not in ("square", "rounded", "airfoil"):
+        if f.leading_edge_kind not in ("square", "rounded", "airfoil"):
             continue
         sweep = math.atan2(float(f.le_at(1.0)), f.span)
-        ca += (leading_edge_cd(m, f.section) * math.cos(sweep) ** 2
+        ca += (leading_edge_cd(m, f.leading_edge_kind) * math.cos(sweep) ** 2
                * int(f.count) * f.thickness * f.span / sref)
     return ca
 
@@ -578,7 +578,7 @@ def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: 
     # blunt fin leading edges: meshed as wedges without axial force where linear
     # theory cannot solve them (supersonic meshes); their drag is Niskanen's
     sharpened = [float(m) for m in builtin_all if m >= MACH_SUPERSONIC_MIN and opt_sup.blunt_le_wedge > 0
-                 and any(f.section in ("square", "rounded", "airfoil") for f in geometry.fins)]
+                 and any(f.leading_edge_kind in ("square", "rounded", "airfoil") for f in geometry.fins)]
     for m in sharpened:
         results[m] = results[m].copy()
         results[m][:, 0] += blunt_leading_edge_ca(geometry, m, sref)

@@ -54,8 +54,11 @@ def _fins(r: random.Random, d: float, x_end: float, boattail_len: float, on_boat
         return text + f"root_chord = {cr:.4f}\ntip_chord = {ct:.4f}\nspan = {span:.4f}\nsweep_length = {sweep:.4f}\n"
     if kind == "elliptical_fins":
         return text + f"root_chord = {cr:.4f}\nspan = {span:.4f}\n"
+    # the tip chord 0.3 x root from a leading edge swept by 0.3-1.1 x root: its trailing edge
+    # may sweep aft of the root's (until session 19 it was clipped to the root's station, which
+    # crossed the outline whenever the tip's leading edge lay aft of the root trailing edge)
     tip_x = r.uniform(0.3, 1.1) * cr
-    return text + (f"points = [[0, 0], [{tip_x:.4f}, {span:.4f}], [{min(cr, tip_x + 0.3 * cr):.4f}, "
+    return text + (f"points = [[0, 0], [{tip_x:.4f}, {span:.4f}], [{tip_x + 0.3 * cr:.4f}, "
                    f"{span:.4f}], [{cr:.4f}, 0]]\n")
 
 

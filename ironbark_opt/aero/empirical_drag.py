@@ -123,11 +123,12 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True,
             ca += boattail_separation_fraction(comp) * np.asarray(cd_base(m), dtype=float) \
                 * np.pi * (comp.fore_radius ** 2 - comp.aft_radius ** 2) / a_ref
     for fins in rocket.fin_sets():
-        if not streamlined_edges and fins.section.kind != "square":
+        edge = fins.section.leading_edge_kind
+        if not streamlined_edges and edge != "square":
             continue
         frontal = fins.thickness * fins.span * fins.count / a_ref
         sweep = np.arctan2(fins.sweep_length, fins.span)
-        ca += leading_edge_cd(m, fins.section.kind) * np.cos(sweep) ** 2 * frontal
+        ca += leading_edge_cd(m, edge) * np.cos(sweep) ** 2 * frontal
     return ca
 
 
@@ -225,7 +226,7 @@ def pressure_ca(rocket, mach) -> np.ndarray:
     m = np.asarray(mach, dtype=float)
     ca = separated_pressure_ca(rocket, m, streamlined_edges=False, nose_wave=True)
     for fins in rocket.fin_sets():
-        if fins.section.kind != "square":
+        if fins.section.leading_edge_kind != "square":
             ca += streamlined_fin_ca(fins, m, rocket.reference_area())
     for fins in rocket.fin_sets():
         ca += np.asarray(cd_base(m), dtype=float) * fins.trailing_edge_base_area() / rocket.reference_area()

@@ -78,6 +78,14 @@ class FinSection:
         object.__setattr__(self, "te_bevel", te)
 
     @property
+    def leading_edge_kind(self) -> str:
+        """The leading edge's shape for its drag: ``square`` for a square section and for a
+        hexagon whose leading edge is not bevelled (``le_bevel`` 0), else the section."""
+        if self.kind == "double_wedge" and self.le_bevel == 0.0:
+            return "square"
+        return self.kind
+
+    @property
     def trailing_edge_base_fraction(self) -> float:
         """Share of the trailing edge's frontal area (thickness x span) that
         carries base drag [-]: 1 for a blunt (square) trailing edge, 1/2 for a
