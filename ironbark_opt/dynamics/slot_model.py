@@ -210,6 +210,15 @@ class SlotFlightModel(FlightModel):
     def _set_trajectory(self, phase: str, n: int):
         """The grids live in ``p``: nothing to rebuild (``_choose_grid`` only records ``n``)."""
 
+    def _with_boost_grid(self, p):
+        """``p`` with the boost grid of the current ``n_boost`` (:meth:`_finite_boost`)."""
+        q = np.array(p, dtype=float)
+        q[self.o_boost:self.o_boost + 2 * self.cap_boost] = padded_grid(self.n_boost, self.cap_boost)
+        return q
+
+    def _can_refine_boost(self, n: int) -> bool:
+        return n < self.cap_boost
+
     def burn_time(self, p):
         return self.slot.burn_time(p) * p[params.index("burn_time_scale")]
 

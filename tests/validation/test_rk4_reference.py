@@ -30,12 +30,30 @@ def _canted_kestrel(tmp_path, cant_deg):
     return path
 
 
-@pytest.mark.parametrize("name", ["calisto", "kestrel", "kestrel_canted"])
+def _spinning_random(tmp_path):
+    """Random rocket 2 (tests/random_rockets.py: 76 mm, 1.95 kg, I_axial 0.0014 kg m^2,
+    K1000T) with its elliptical fins canted 1.5 deg: 198 rad/s at burnout.  Until session
+    19 its flight was refused: the provisional 0.02 s boost blew up before burnout (the
+    roll couples pitch and yaw at ~280 rad/s), so the stiffness check had no finite state
+    (grid.GridMixin._finite_boost); then the stability-chosen coast left it -8.5 m short
+    (grid.SPIN_LAMBDA_FACTOR: -1.7 m)."""
+    import sys
+    sys.path.insert(0, str(ROOT / "tests"))
+    from random_rockets import random_rocket
+    text = random_rocket(2).replace("thickness = ", "cant_deg = 1.5\nthickness = ", 1)
+    path = tmp_path / "random2_canted.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("name", ["calisto", "kestrel", "kestrel_canted",
+                                  pytest.param("random2_canted", marks=pytest.mark.slow)])
 def test_rk4_matches_dop853_on_the_same_rhs(name, tmp_path):
     """Tolerance 0.5 m in apogee (DOP853 rtol 1e-10); the canted Kestrel also in its
     roll rate at burnout (2 %): the roll channel's damping and forcing advanced
     together (integrator.rk4_step) keep the equilibrium roll rate."""
     path = _canted_kestrel(tmp_path, 1.5) if name == "kestrel_canted" else \
+        _spinning_random(tmp_path) if name == "random2_canted" else \
         ROOT / f"examples/{name}/{name}.toml"
     setup = load_setup(path)
     model = flight_model(setup)
@@ -68,7 +86,7 @@ def test_rk4_matches_dop853_on_the_same_rhs(name, tmp_path):
     d_rail = run["t_rail"] - rail.t[-1]
     print(f"RK4 - DOP853: apogee {d_apogee:+.4f} m, apogee time {d_time:+.5f} s, rail exit {d_rail:+.2e} s "
           f"(RK4 steps: rail {model.steps.n_rail}, boost {model.n_boost}, coast {model.n_coast})")
-    if name == "kestrel_canted":
+    if name in ("kestrel_canted", "random2_canted"):
         wx_rk4 = float(np.asarray(run["x_burnout"]).ravel()[10])
         wx_ref = float(boost.y[10, -1])
         print(f"roll rate at burnout: RK4 {wx_rk4:.4f}, DOP853 {wx_ref:.4f} rad/s")
