@@ -203,7 +203,11 @@ class FinGeometry:
         if self.blunt_trailing_edge:
             return self.bevels(chord)[1]
         if self.section == "double_wedge" and self.te_bevel == 0.0:
-            return 1e-12 * chord            # a step: only the last chordwise panel
+            # a square trailing edge: the square section's closure (until session 19 a step
+            # over the last chordwise panel; where the leading-edge bevel took the whole
+            # chord, toward a short tip, that panel stood square to the stream and the
+            # subsonic equations were singular: |Cp| 1.5e5)
+            return min(self.thickness, chord / 2)
         return 0.0
 
     def bevels(self, chord) -> tuple[float, float]:
@@ -262,6 +266,8 @@ class FinGeometry:
         s = np.clip(xi / max(c, 1e-300), 0.0, 1.0)
         if self.section == "double_wedge":
             le, te = self.bevels(c)
+            if self.te_bevel == 0.0:        # square trailing edge: closed as the square section's
+                te = self.trailing_edge_closure(c)
             h = np.minimum(np.minimum(xi / max(le, 1e-300), (c - xi) / max(te, 1e-300)), 1.0)
             return 0.5 * t * np.clip(h, 0.0, 1.0)
         if self.section == "airfoil":   # NACA 00xx, Abbott & von Doenhoff (1959) eq. 6.2, closed TE

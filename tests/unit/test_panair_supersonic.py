@@ -121,15 +121,20 @@ def test_bad_load_tolerance_grows_with_the_case_force(coarse_finner):
 
 
 def test_leading_edge_bevel_only_fins_solve_supersonic():
-    """Fins bevelled at the leading edge only (square trailing edge): the step
-    that closes the trailing edge is left out of the supersonic solve (it
-    carries the base-drag model's part), so Mach 2 solves; it used to be
+    """Fins bevelled at the leading edge only (square trailing edge): the square
+    edge is closed by the supersonic stand-in's wedge, which carries no axial
+    force (the base-drag model's part), so Mach 2 solves; it used to be
     reported superinclined.  The rear bevel's wave drag (te_bevel 0 -> 0.02)
     against Ackeret's 2-D value 4 fins x 2 theta t s / beta / Sref, theta =
-    (t/2)/te_bevel: within 30 % (the tip Mach cones relieve the 3-D fin)."""
+    (t/2)/te_bevel: within 30 % (the tip Mach cones relieve the 3-D fin).
+    The mesh has the supersonic stand-ins (``blunt_le_wedge``, as
+    ``MeshOptions.for_mach``); until session 19 this test meshed the square edge
+    as a step over the last chordwise panel instead."""
+    from panair.mesh import SUPERSONIC_LE_WEDGE
     body = BodyGeometry(np.array([0.0, 0.3, 1.2]), np.array([0.0, 0.05, 0.05]))
     opt = MeshOptions(supersonic_span_factor=2.0, supersonic_chord_factor=1.0,
-                      n_theta=16, n_nose=10, body_spacing=0.8, n_chord=16, n_span=4)
+                      n_theta=16, n_nose=10, body_spacing=0.8, n_chord=16, n_span=4,
+                      blunt_le_wedge=SUPERSONIC_LE_WEDGE)
     ca = {}
     for te in (0.0, 0.02):
         fins = (FinGeometry(4, 0.12, 0.06, 0.1, 0.06, 1.0, 0.005, section="double_wedge",
