@@ -76,7 +76,7 @@ from .nose_correction import TangentCone
 from .supersonic_influence import panel_frames, source_potential_pair
 from .supersonic_diaphragm import diaphragm_sheets, merge_sheets, tip_sheets
 from .supersonic_wake import (cut_wake_neighbours, fin_plane as _fin_plane, folded_wake_systems, sheet_geometry,
-                              sheet_sides, sheet_twins, wake_rows, wake_sheets)
+                              sheet_sides, sheet_twins, tip_caps as _tip_caps, wake_rows, wake_sheets)
 
 __all__ = ["SupersonicSolver", "MACH_SUPERSONIC_MIN", "MACH_SUPERSONIC_MAX", "G1_MIN"]
 
@@ -529,25 +529,6 @@ def _mirror_sides(panels: PanelSet, keep, cen, nrm, fin_r, cen_r=None, nrm_r=Non
     nrm_r = nrm if nrm_r is None else nrm_r
     return _receiver_sides(planes, x0, tol, partner, cen_r * flip, nrm_r * flip, fin_r,
                            _paired(panels, planes, tol))
-
-
-def _tip_caps(panels: PanelSet, keep, fins) -> np.ndarray:
-    """Panels of networks that touch a fin network (tip caps) and are not
-    the body: networks sharing points with a fin whose panels all face
-    sideways."""
-    net = panels.network[keep]
-    out = np.zeros(len(net), bool)
-    if not len(fins):
-        return out
-    fin_pts = panels.corners[np.isin(panels.network, fins)].reshape(-1, 3)
-    lo, hi = fin_pts.min(0), fin_pts.max(0)
-    c = panels.corners[keep].mean(axis=1)
-    inside = np.all((c >= lo - 1e-9) & (c <= hi + 1e-9), axis=1)
-    for k in np.unique(net):
-        on = net == k
-        if k not in fins and inside[on].all():
-            out |= on
-    return out
 
 
 def _pointed_tip_closure(panels: PanelSet, keep, fins) -> np.ndarray:
