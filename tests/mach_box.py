@@ -68,7 +68,13 @@ def wing_cl_alpha(le, te, half_span: float, mach: float, n: int = 100, extra: in
     B = np.sqrt(mach * mach - 1.0)
     yy = np.linspace(0.0, half_span, 2001)
     d = max(te(y) for y in yy) / n
-    nr = n + extra
+    if te(half_span) - le(half_span) > d:
+        # a streamwise tip on a box edge, B s = (k + 1/2) d (boxes centred on y = 0):
+        # otherwise the boxed wing's span is up to half a box off and its lift, ~ span^2
+        # on a slender wing, with it (a pointed tip's span is set by the leading edge's
+        # staircase, left as it was)
+        d = B * half_span / (np.ceil(B * half_span / d - 0.5) + 0.5)
+    nr = int(np.ceil(max(te(y) for y in yy) / d - 1e-9)) + extra
     ncol = int(np.ceil(nr + B * half_span / d)) + 2
     ys = np.arange(-ncol, ncol + 1) * d / B
     W = 2 * ncol

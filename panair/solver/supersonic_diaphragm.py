@@ -36,6 +36,17 @@ fin, so that part of the sheet carries nothing; the margin keeps the sheet's fro
 off the Mach line of the fin's own corner: a Mach-cone coincidence)."""
 
 
+LE_GRADED = True
+"""The diaphragm's cells graded toward the leading edge: lengths growing quadratically
+from the fin's own first chordwise panel there (cell boundaries equally spaced in the
+square root of the distance from the edge, the form of a subsonic edge's singularity:
+the normal velocity ahead of the edge and the load behind it go like 1 / sqrt(distance),
+Evvard NACA Rep. 951; Jones & Cohen 1960, sec. 6) to at most about two fin panel lengths
+at the Mach line.  False: cells of one (median) fin chordwise panel length, the model of
+sessions 12-18, whose first cell was ~10 x the fin's cosine-clustered leading-edge panel
+and lost the suction peak ahead of the edge."""
+
+
 def _two_faced(cells, fin_idx, panels, cen_all, fins) -> WakeSheets | None:
     """The cells (corners, physical) of the fins ``fins[fin_idx]`` as a two-faced sheet
     with no potential jump: the faces looking to +e_t of their fin's plane, then the
@@ -83,6 +94,18 @@ def _fin_mid_plane(panels, cen_all, f, size: float):
     return on, c0, e_t, e_s, pts, s, x, st, np.array([x[lead & (s == v)].min() for v in st])
 
 
+def _first_panel(pts, e_s, st, x_le, size: float) -> np.ndarray:
+    """Axial length of the fin's first chordwise panel behind its leading edge at each
+    spanwise station ``st`` (from the fin's corners ``pts``)."""
+    s_all = np.round(pts @ e_s, 9)
+    out = np.empty(len(st))
+    for k, (v, x0) in enumerate(zip(st, x_le)):
+        xs = np.unique(pts[np.abs(s_all - v) < 1e-6 * size, 0])
+        xs = xs[xs > x0 + 1e-9 * size]
+        out[k] = xs.min() - x0 if len(xs) else np.inf
+    return out
+
+
 def diaphragm_sheets(panels, keep, fins, B: float) -> WakeSheets | None:
     """Diaphragm cells (physical coordinates) of the fins ``fins`` (network ids) at
     Mach number sqrt(1 + B^2), or None where no fin has a subsonic leading edge.
@@ -100,13 +123,20 @@ def diaphragm_sheets(panels, keep, fins, B: float) -> WakeSheets | None:
         on, c0, e_t, e_s, pts, s, x, st, x_le = fm
         dx = float(np.median(np.ptp(panels.corners[on][..., 0], axis=1)))
         x_mach = x_le[0] + B * (st - st[0]) - MARGIN * dx
+        h_le = _first_panel(pts, e_s, st, x_le, size)
         length = x_le - x_mach
         d = float(c0 @ e_t)
         for j in range(len(st) - 1):
             if length[j] <= MARGIN * dx + tol and length[j + 1] <= MARGIN * dx + tol:
                 continue                       # a supersonic strip: ahead of the Mach line
-            n = max(1, int(np.ceil(max(length[j], length[j + 1]) / dx)))
-            fr = np.linspace(0.0, 1.0, n + 1)
+            if LE_GRADED:
+                span_len = max(length[j], length[j + 1])
+                h = min(h_le[j], h_le[j + 1])
+                n = max(1, int(np.ceil(span_len / dx)), int(np.ceil(np.sqrt(span_len / h))))
+                fr = 1.0 - np.linspace(1.0, 0.0, n + 1) ** 2      # graded to the edge
+            else:
+                n = max(1, int(np.ceil(max(length[j], length[j + 1]) / dx)))
+                fr = np.linspace(0.0, 1.0, n + 1)
             xa = x_mach[j] + fr * (x_le[j] - x_mach[j])
             xb = x_mach[j + 1] + fr * (x_le[j + 1] - x_mach[j + 1])
             for i in range(n):

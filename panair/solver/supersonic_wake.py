@@ -35,7 +35,7 @@ import numpy as np
 
 from .influence import planar_corners
 
-__all__ = ["WakeSheets", "fin_plane", "wake_sheets", "cut_wake_neighbours", "sheet_twins",
+__all__ = ["WakeSheets", "fin_plane", "tip_caps", "wake_sheets", "cut_wake_neighbours", "sheet_twins",
            "sheet_geometry", "sheet_sides", "wake_rows"]
 
 #: Cells per body panel length behind the trailing edge (measured on Allen's fin 10 at
@@ -101,6 +101,25 @@ def fin_plane(fin_centroids):
     return c0, (e_t if s >= 0 else -e_t)
 
 
+def tip_caps(panels, keep, fins) -> np.ndarray:
+    """Panels of networks that touch a fin network (tip caps) and are not
+    the body: networks sharing points with a fin whose panels all face
+    sideways."""
+    net = panels.network[keep]
+    out = np.zeros(len(net), bool)
+    if not len(fins):
+        return out
+    fin_pts = panels.corners[np.isin(panels.network, fins)].reshape(-1, 3)
+    lo, hi = fin_pts.min(0), fin_pts.max(0)
+    c = panels.corners[keep].mean(axis=1)
+    inside = np.all((c >= lo - 1e-9) & (c <= hi + 1e-9), axis=1)
+    for k in np.unique(net):
+        on = net == k
+        if k not in fins and inside[on].all():
+            out |= on
+    return out
+
+
 def wake_sheets(panels, keep, fins) -> WakeSheets | None:
     """The wake sheets of the fins ``fins`` (network ids) behind which the kept
     (integrated) panels continue, or None when no fin has a body behind it.
@@ -116,7 +135,11 @@ def wake_sheets(panels, keep, fins) -> WakeSheets | None:
     kept = panels.corners[keep]
     x_end = float(kept[..., 0].max())
     fin_of_panel = panels.network
+    # the body: neither a fin nor a fin's tip cap (a cap alongside the tip chord is no
+    # body radius for the guard below: it stopped the wakes of a fin whose tip runs aft
+    # of its root trailing edge, a swept trailing edge, at the tip chord's x)
     body_like = ~np.isin(fin_of_panel, fins) & keep
+    body_like[np.nonzero(keep)[0][tip_caps(panels, keep, fins)]] = False
     stations = np.unique(np.round(panels.corners[body_like][..., 0].ravel(), 12))
     if CELLS_PER_BODY_PANEL > 1 and len(stations) > 1:
         sub = np.linspace(0.0, 1.0, CELLS_PER_BODY_PANEL + 1)[1:-1]

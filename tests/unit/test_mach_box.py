@@ -40,3 +40,14 @@ def test_reverse_flow_theorem_swept_trailing_edge():
     # and a slender wing's lift is near pi A / 2 (slender-wing theory, R. T. Jones 1946)
     aspect = 4.0 * s * s / (2.0 * s * c)
     assert 0.8 < fwd / (np.pi * aspect / 2.0) < 1.3
+
+
+def test_streamwise_tip_on_a_box_edge_converges():
+    """A slender wing with a streamwise tip (B A = 0.33 at Mach 1.2): the boxed wing's span
+    is the wing's (the tip on a box edge), so the box count changes its lift smoothly.
+    Before session 19 the span was whole boxes about y = 0, up to half a box off the
+    tip: n = 100 / 141 / 200 / 300 gave 0.834 / 0.758 / 0.798 / 0.786 /rad (lift ~ span^2),
+    now 0.798 / - / 0.789 / 0.786."""
+    le, te = (lambda y: 0.1373 / 0.0981 * y), (lambda y: 0.4593)
+    a, b = (wing_cl_alpha(le, te, 0.0981, 1.2, n=n) for n in (100, 200))
+    assert abs(a / b - 1.0) < 0.02, (a, b)

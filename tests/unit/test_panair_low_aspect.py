@@ -8,8 +8,10 @@ A = 0.67, B A = 0.44 / 0.83 at Mach 1.2 / 1.6, subsonic leading edge, every poin
 fin inside its tip's Mach cone.  Two cases:
 
 * the wing alone (the pair on a 1 mm body): fin panels' CN-alpha on the planform area
-  against the Mach box (measured, default model: Mach 1.2 / 1.6 / 2.0 +13.3 / -14.9 /
-  -15.9 %; thin-wing model -6.3 / -5.3 / -3.3 %);
+  against the Mach box (measured, default model: Mach 1.2 / 1.6 / 2.0 +12.3 / -13.4 /
+  -15.1 %; thin-wing model +1.9 / +2.6 / +1.8 %, before its leading-edge diaphragm was
+  graded, session 19, -7.1 / -3.6 / -2.4 %; session 18's Mach box, its span then whole
+  boxes: -6.3 / -5.3 / -3.3 %);
 * the pair on Allen's 3-inch body (r / s = 0.5): the configuration's CN-alpha minus the
   body alone's (the fins and their interference on the body, the body ahead of the fins
   unchanged by causality) against the Mach box's wing alone times the slender-body
@@ -26,7 +28,9 @@ fin inside its tip's Mach cone.  Two cases:
   faces leak through and hide it), so the tips keep two-dimensional lift and hand it on
   to the body.  Thin-wing model (partners sided, leading-edge and tip diaphragms) 4.83 /
   5.14 / 5.37 (+1 / -7 / -2 %).  Asserted here (conical nose, the difference to the body
-  alone, Mach box n = 100): default +69.5 / +21.8 / +14.2 %, thin-wing +3.2 / -8.5 / -0.7 %.
+  alone, Mach box n = 100): default +69.5 / +21.8 / +14.2 %, thin-wing +3.2 / -8.5 / -0.7 %
+  (session 19, the box's tip on a box edge and the graded diaphragm: default +68.0 / +24.1
+  / +15.2 %, thin-wing +7.1 / -3.9 / +3.1 %).
 
 The default model's excess is asserted as measured (bounded both ways, so that a change is
 seen); the thin-wing model against the reference.
@@ -86,9 +90,40 @@ def _fin_share(mach):
     return (cna[1] - cna[0]) / ref - 1.0
 
 
-@pytest.mark.parametrize("mach", [1.6, 2.0])
+@pytest.mark.parametrize("mach", [1.2, 1.6, 2.0])
 def test_wing_alone_thin_wing_model(thin_wing, mach):
-    assert abs(_wing_alone(mach)) < 0.08       # Mach box about 2 %, the mesh's edges
+    # measured +1.9 / +2.6 / +1.8 % (before the graded diaphragm, session 19: -7.1 / -3.6 /
+    # -2.4 %); the Mach box about 2 %
+    assert abs(_wing_alone(mach)) < 0.05
+
+
+# slender wings alone (B A = 0.33 / 0.28 at Mach 1.2): root, tip, span, leading-edge sweep
+SLENDER = {"unswept_te": (0.4593, 0.3220, 0.0981, 0.1373),
+           "parallelogram": (0.4593, 0.4593, 0.0981, 0.1373)}
+
+
+@pytest.mark.parametrize("name", sorted(SLENDER))
+def test_slender_wing_alone_thin_wing_model(thin_wing, name):
+    """Mach 1.2, subsonic leading edge, streamwise tip; the parallelogram's trailing edge
+    subsonic too (its wake acts on the wing).  Measured (session 19, against the Mach box
+    at n = 100, itself ~1.5 % above its n -> infinity value here): unswept trailing edge
+    -20.5 -> -11.3 %, parallelogram -31.2 -> -22.4 % (wake sheets behind the swept
+    trailing edge, supersonic_wake.wake_sheets) -> -12.4 % (graded leading-edge
+    diaphragm).  The rest, about -10 %, moves little with refinement (refine 1 / 1.4 / 2:
+    -11.3 / -11.1 / -9.7 % and -12.4 / -10.9 / -10.4 %): bounded here, not explained."""
+    root, tip, span, sweep = SLENDER[name]
+    mach, x0 = 1.2, 0.1
+    body = BodyGeometry(np.array([x0 - 0.05, x0 - 0.03, x0 + max(root, sweep + tip) + 0.002]),
+                        np.array([0.0, 0.001, 0.001]))
+    fins = (FinGeometry(2, root, tip, span, sweep, x0, THICK, roll=np.pi / 2),)
+    opt = MeshOptions(n_theta=16, n_nose=4, body_spacing=4.0).for_mach(mach)
+    p = build_panels(mesh_rocket(RocketGeometry(body, fins), symmetric=True, options=opt),
+                     symmetric=True)
+    ref = wing_cl_alpha(lambda y: sweep / span * y,
+                        lambda y: sweep / span * y + root + (tip - root) * y / span, span, mach, n=100)
+    err = fin_panels_cn_alpha(p, mach, span * (root + tip), root)[0] / ref - 1.0
+    print(f"\nslender wing {name} Mach 1.2: {100 * err:+.1f} % of the Mach box")
+    assert -0.16 < err < 0.0
 
 
 @pytest.mark.parametrize("mach, lo, hi", [(1.6, -0.18, -0.08), (2.0, -0.20, -0.10)])

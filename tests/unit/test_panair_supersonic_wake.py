@@ -152,6 +152,28 @@ def test_sheet_stops_where_the_body_grows_past_it():
     assert X_TE < ends["flare"] <= 8.5
 
 
+def test_sheet_behind_a_swept_trailing_edge_runs_to_the_body_end():
+    """A parallelogram fin (trailing edge swept back, the tip's trailing edge 0.4 cal
+    aft of the root's): every strip's sheet runs from its trailing edge to the body's
+    end.  Before session 19 the guard above took the tip cap alongside the tip chord for
+    the body (its radius the tip's) and stopped each strip's sheet at the first body
+    station beside the tip chord: 14 cells instead of 100+ on a slender wing, whose
+    Mach 1.2 thin-wing lift was then -31 % of the Mach box, -22 % with the sheets."""
+    from panair.solver.supersonic_wake import wake_sheets
+    fins = (FinGeometry(2, 1.0, 1.0, 0.6, 0.4, X_TE - 1.0, 0.04, roll=np.pi / 2),)
+    p = build_panels(mesh_rocket(RocketGeometry(BodyGeometry(np.array([0.0, 2.84, 10.0]),
+                                                             np.array([0.0, 0.5, 0.5])), fins),
+                                 symmetric=True, options=_opt()), symmetric=True)
+    lifting = ~p.wake_at_base
+    sh = wake_sheets(p, p.integrate.copy(), np.unique(p.network[p.wake_upper[lifting]]))
+    c = sh.corners[:sh.n_cells]
+    r_mid = np.round(np.linalg.norm(c.mean(axis=1)[:, 1:], axis=1), 6)
+    ends = [float(c[r_mid == r][..., 0].max()) for r in np.unique(r_mid)]
+    print(f"\nstrips {len(ends)}, ends {np.round(ends, 3)}")
+    assert len(ends) >= 6
+    np.testing.assert_allclose(ends, 10.0, atol=1e-9)
+
+
 @pytest.mark.parametrize("count, roll_deg", [(3, 0.0), (4, 0.0), (3, 17.0), (4, 45.0)])
 def test_sheet_faces_are_sided_as_their_fins(count, roll_deg):
     """A wake face looks to the side ``sheets.side`` of its fin's plane (physical space,
