@@ -426,6 +426,15 @@ def _chord_stations(n, clustering):
     return (1 - clustering) * s + clustering * 0.5 * (1 - np.cos(np.pi * s))
 
 
+MIN_STRIPS_BETWEEN_ROOTS = 2
+"""Fewest strips of body panels between two neighbouring fin-root meridians.  A single
+strip had root lines (and their zero-width slivers) on both sides, and its surface
+gradient took a fin wake's potential jump: two fin sets with roots 15 deg apart (3 fins,
+4 canards) gave body Cp -38 and CN of the wrong sign (tests/unit/
+test_panair_fin_sets_close_roots.py).  Changes only gaps under 1.5 x the mesh's spacing
+(16.9 deg at 32 lines): two fin sets, or more than 21 fins."""
+
+
 def _meridians(th_start: float, th_end: float, fin_thetas, n_theta: int) -> np.ndarray:
     """Body meridian angles [rad] from ``th_start`` to ``th_end``, with every fin
     root angle on a line and each gap between them split evenly at about
@@ -438,7 +447,7 @@ def _meridians(th_start: float, th_end: float, fin_thetas, n_theta: int) -> np.n
     step = 2.0 * np.pi / n_theta
     out = [th_start]
     for a, b in zip(bounds[:-1], bounds[1:]):
-        k = max(1, int(round((b - a) / step)))
+        k = max(MIN_STRIPS_BETWEEN_ROOTS, int(round((b - a) / step)))
         out.extend(a + (b - a) * np.arange(1, k + 1) / k)
     return np.array(out)
 
