@@ -43,6 +43,9 @@ WARN_INCLINATION_DEG = 60.0       # [deg] TRA high-power code: within 30 deg of 
 MAX_WIND_MPS = 30.0               # [m/s] hurricane-force at the pad: no launch
 WARN_WIND_MPS = 8.9               # [m/s] 20 mph, the NAR/TRA wind limit
 MIN_MARGIN_CAL = 1.0              # [cal] warn below (Barrowman rule of thumb)
+#: [m/s] warn below: the common rule of thumb of about 50 ft/s for fin stabilisation at
+#: rail exit (the Spaceport America Cup's rule is 100 ft/s, 30.5 m/s)
+MIN_RAIL_EXIT_SPEED_MPS = 15.0
 MAX_SITE_ELEVATION_M = 9000.0     # [m] above the highest ground on Earth (8849 m)
 
 
@@ -245,7 +248,18 @@ def check_ascent_stability(setup, parameters=None, *, allow_unstable: bool, summ
     out = {k: float(summary[k]) for k in MARGIN_KEYS}
     check_ascent_margin(*out.values(), allow_unstable=allow_unstable,
                         source=getattr(getattr(setup, "stack", setup), "source", None))
+    check_rail_exit_speed(summary.get("rail_exit_speed_mps") if hasattr(summary, "get") else None)
     return out
+
+
+def check_rail_exit_speed(speed_mps) -> None:
+    """Warn when the flown rail-exit speed [m/s] (None: not known) is below
+    :data:`MIN_RAIL_EXIT_SPEED_MPS`: the fins have little dynamic pressure to turn the
+    rocket into the wind and it weathercocks."""
+    if speed_mps is not None and math.isfinite(float(speed_mps)) and float(speed_mps) < MIN_RAIL_EXIT_SPEED_MPS:
+        _warn(f"rail exit speed {float(speed_mps):.1f} m/s is below {MIN_RAIL_EXIT_SPEED_MPS:g} m/s (about 50 "
+              "ft/s, the common minimum for fin stabilisation; a longer rail, a lighter rocket or a motor "
+              "with a higher initial thrust raise it)")
 
 
 def check_ascent_margin(min_margin: float, time_s: float, *, allow_unstable: bool, source=None) -> None:

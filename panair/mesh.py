@@ -134,6 +134,10 @@ class FinGeometry:
     blunt_trailing_edge : bool
         Set by :meth:`sharpened`: the trailing-edge bevel closes a blunt edge
         (its panels carry no axial force, as the leading edge's wedge).
+    stand_in_first : bool
+        Set by :meth:`sharpened` for a hexagon with one square edge: on a chord too
+        short for both bevels the square edge's stand-in wedge keeps its length (up
+        to half the chord) and the user's bevel takes the rest (:meth:`bevels`).
     """
 
     count: int
@@ -150,6 +154,7 @@ class FinGeometry:
     outline: tuple | None = field(default=None, compare=False)
     blunt_leading_edge: bool = False
     blunt_trailing_edge: bool = False
+    stand_in_first: bool = False
 
     def __post_init__(self):
         for name in ("root_chord", "span", "thickness"):
@@ -215,6 +220,15 @@ class FinGeometry:
         [m] (None: the ridge at mid-chord; scaled down to fit a short chord)."""
         le = chord / 2 if self.le_bevel is None else self.le_bevel
         te = chord / 2 if self.te_bevel is None else self.te_bevel
+        if self.stand_in_first and le + te > chord:
+            # scaled together, a bevel much longer than the chord squeezed the stand-in
+            # wedge to a sliver steeper than the Mach cone (le_bevel 5.7 m on a 0.28 m
+            # chord: 48 superinclined panels at Mach 1.5, local inclination)
+            if self.blunt_trailing_edge:
+                te = min(te, chord / 2)
+                return chord - te, te
+            le = min(le, chord / 2)
+            return le, chord - le
         k = min(1.0, chord / (le + te)) if le + te > 0 else 1.0
         return le * k, te * k
 
@@ -242,7 +256,8 @@ class FinGeometry:
                 return self
             return replace(self, le_bevel=le if le > 0 else wedge * self.thickness,
                            te_bevel=te if te > 0 else wedge * self.thickness,
-                           blunt_leading_edge=le == 0, blunt_trailing_edge=te == 0)
+                           blunt_leading_edge=le == 0, blunt_trailing_edge=te == 0,
+                           stand_in_first=True)
         if self.section not in ("square", "rounded", "airfoil"):
             return self
         if self.section == "airfoil":

@@ -169,3 +169,31 @@ def test_ascent_stability_is_one_rule_for_every_command(tmp_path):
     assert minima["simulate"] < 0
     assert minima["sensitivity"] == pytest.approx(minima["simulate"], abs=1e-9)
     assert minima["montecarlo"] == pytest.approx(minima["simulate"], abs=1e-9)
+
+
+def test_slow_rail_exit_warns():
+    """Calisto off a 2.3 m rod (0.96 m of travel past its rail guide): the rail-exit speed
+    falls under 15 m/s and ``simulate`` warns (plausibility.MIN_RAIL_EXIT_SPEED_MPS); off its
+    own 5.2 m rail (26 m/s) it does not.  The two speeds against uniform acceleration,
+    v = sqrt(2 a d) over the travel d with the same a: ratio sqrt(d_5.2 / d_2.3) within 10 %
+    (the thrust curve's rise makes the short travel's mean acceleration lower)."""
+    import json
+
+    from click.testing import CliRunner
+
+    from ironbark_opt import load_setup
+    from ironbark_opt.cli import main
+
+    toml = str(ROOT / "examples/calisto/calisto.toml")
+    offset = load_setup(toml).rail_exit_offset
+    short = CliRunner().invoke(main, ["simulate", toml, "--json", "--rail-length", "2.3"])
+    full = CliRunner().invoke(main, ["simulate", toml, "--json"])
+    assert short.exit_code == 0 and full.exit_code == 0, short.stderr + full.stderr
+    v_short = json.loads(short.stdout)["rail_exit_speed_mps"]
+    v_full = json.loads(full.stdout)["rail_exit_speed_mps"]
+    uniform = math.sqrt((5.2 - offset) / (2.3 - offset))
+    print(f"rail exit: 2.3 m rod {v_short:.2f} m/s, 5.2 m rail {v_full:.2f} m/s, ratio "
+          f"{v_full / v_short:.3f} (uniform acceleration {uniform:.3f})")
+    assert v_short < 15.0 and "rail exit speed" in short.stderr
+    assert v_full > 15.0 and "rail exit speed" not in full.stderr
+    assert v_full / v_short == pytest.approx(uniform, rel=0.10)
