@@ -9,9 +9,12 @@ solver failure).
 """
 from __future__ import annotations
 
+import contextlib
 import functools
+import io
 import json
 import math
+import os
 import sys
 import warnings
 
@@ -79,6 +82,39 @@ def handle_errors(func):
     return wrapper
 
 
+@contextlib.contextmanager
+def native_stdout_to_stderr():
+    """While a command runs, the process's file descriptor 1 goes to stderr and only
+    Python's ``sys.stdout`` (a new stream on the original descriptor) reaches stdout.
+
+    Native libraries write diagnostics to descriptor 1 directly: the reference BLAS's
+    XERBLA (" ** On entry to DTRSV parameter number 6 had an illegal value", from
+    SuperLU on a degenerate supersonic influence matrix, whose Mach number then falls
+    back to local inclination) landed in front of ``aero build --json``'s document, so
+    the output was not JSON.  A no-op when ``sys.stdout`` is not descriptor 1 (click's
+    test runner, captured streams)."""
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):
+        fd = None
+    if fd != 1:
+        yield
+        return
+    old = sys.stdout
+    old.flush()
+    saved = os.dup(1)
+    os.dup2(2, 1)
+    sys.stdout = io.TextIOWrapper(io.FileIO(saved, "w", closefd=True), encoding=old.encoding,
+                                  errors=old.errors, line_buffering=old.line_buffering)
+    try:
+        yield
+    finally:
+        sys.stdout.flush()
+        os.dup2(saved, 1)
+        sys.stdout.close()
+        sys.stdout = old
+
+
 class OneLineErrorGroup(click.Group):
     """A click group whose usage errors (bad option value, missing option,
     unknown option) are one ``error:`` line naming the option, exit status 2,
@@ -88,7 +124,8 @@ class OneLineErrorGroup(click.Group):
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode, **extra)
         try:
-            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+            with native_stdout_to_stderr():
+                rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
         except click.UsageError as err:
             cmd = err.ctx.command_path if err.ctx is not None else "ironbark"
             click.echo(f"error: {err.format_message()} (see '{cmd} --help')", err=True)

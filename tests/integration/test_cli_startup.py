@@ -39,3 +39,19 @@ def test_simulate_does_not_import_heavy_modules(tmp_path):
     from ironbark_opt.vehicle import load_setup
     out = json.loads(proc.stdout)
     assert out["apogee_agl_m"] == simulate(load_setup(EXAMPLE)).apogee_agl
+
+
+def test_native_writes_to_stdout_go_to_stderr():
+    """A native library writing to file descriptor 1 while a command runs (the reference
+    BLAS's XERBLA under SuperLU, which corrupted ``aero build --json``) lands on stderr;
+    what the command prints through ``sys.stdout`` stays on stdout, and descriptor 1 is
+    restored afterwards."""
+    code = ("import os, sys\n"
+            "from ironbark_opt.cli.common import native_stdout_to_stderr\n"
+            "with native_stdout_to_stderr():\n"
+            "    os.write(1, b' ** On entry to DTRSV  parameter number  6\\n')\n"
+            "    print('{\"ok\": 1}')\n"
+            "os.write(1, b'after\\n')\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout == '{"ok": 1}\nafter\n'
+    assert "DTRSV" in out.stderr
