@@ -25,8 +25,8 @@ MIN_COAST_STEPS = 300
 #: error there (y^5/120, y^6/144 a step at y = |w_x| dt; 0.063 / 0.079 at 1.5, 0.002 /
 #: 0.001 at 0.75) is an error of the whole motion, not of a small oscillation about it.
 #: Measured (a 76 mm, 2 kg rocket, fins canted 1.5 deg, 198 rad/s at burnout; RK4 -
-#: DOP853 rtol 1e-10): apogee -8.5 m with the stability bound alone, -0.4 m with twice
-#: the coast steps.
+#: DOP853 rtol 1e-10): apogee -8.5 m with the stability bound alone, -1.7 m with this
+#: bound too (-0.4 m with twice its coast steps).
 SPIN_LAMBDA_FACTOR = 2.0
 #: Times the nominal boost's step count is doubled at most when its coarse grid blows up
 #: before burnout (the stiffness check needs a finite burnout state; 2^6 = 64 x).
@@ -56,8 +56,8 @@ class GridMixin:
         :data:`MAX_BOOST_DOUBLINGS` times) while the provisional grid blows up before
         burnout.  The stiffness check (:meth:`_ensure_stable`) reads the Jacobian at
         burnout, so it needs a finite state there; a mode stiffer during the boost than
-        ``dt_boost`` allows (fins canted 1 deg on a 76 mm, 2 kg rocket: its roll rate
-        couples pitch and yaw at ~100 rad/s, over RK4's region at 0.02 s steps) made the
+        ``dt_boost`` allows (fins canted 1 deg on a 76 mm, 2 kg rocket: its roll rate, up
+        to 198 rad/s, couples pitch and yaw at ~280 rad/s, over RK4's region at 0.02 s steps) made the
         whole state NaN first, and the flight was refused."""
         for _ in range(MAX_BOOST_DOUBLINGS + 1):
             x_b = np.array(self._run["boost"](x_r, t_r, t_b, self._with_boost_grid(p)))[:, -1]
