@@ -256,8 +256,9 @@ def check_rail_exit_speed(speed_mps) -> None:
     """Warn when the flown rail-exit speed [m/s] (None: not known) is below
     :data:`MIN_RAIL_EXIT_SPEED_MPS`: the fins have little dynamic pressure to turn the
     rocket into the wind and it weathercocks."""
-    if speed_mps is not None and math.isfinite(float(speed_mps)) and float(speed_mps) < MIN_RAIL_EXIT_SPEED_MPS:
-        _warn(f"rail exit speed {float(speed_mps):.1f} m/s is below {MIN_RAIL_EXIT_SPEED_MPS:g} m/s (about 50 "
+    speed = math.nan if speed_mps is None else float(speed_mps)
+    if speed < MIN_RAIL_EXIT_SPEED_MPS:            # False for NaN (not known)
+        _warn(f"rail exit speed {speed:.1f} m/s is below {MIN_RAIL_EXIT_SPEED_MPS:g} m/s (about 50 "
               "ft/s, the common minimum for fin stabilisation; a longer rail, a lighter rocket or a motor "
               "with a higher initial thrust raise it)")
 

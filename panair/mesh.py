@@ -44,6 +44,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ironbark_opt.errors import InputError
+from ironbark_opt.rocket.fin_sections import leading_edge_kind
 
 from .lawgs import Network
 
@@ -191,12 +192,8 @@ class FinGeometry:
 
     @property
     def leading_edge_kind(self) -> str:
-        """``square`` for a square section and a hexagon with ``le_bevel`` 0 (a square
-        leading edge), else the section (as
-        :attr:`ironbark_opt.rocket.fin_sections.FinSection.leading_edge_kind`)."""
-        if self.section == "double_wedge" and self.le_bevel == 0.0:
-            return "square"
-        return self.section
+        """:func:`ironbark_opt.rocket.fin_sections.leading_edge_kind` of this fin's section."""
+        return leading_edge_kind(self.section, self.le_bevel)
 
     def trailing_edge_closure(self, chord) -> float:
         """Chordwise length [m] of the wedge that closes a blunt trailing edge

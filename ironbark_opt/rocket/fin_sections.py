@@ -39,6 +39,13 @@ KINDS = {"square": "square", "flat": "square", "rounded": "rounded", "airfoil": 
          "double_wedge": "double_wedge", "hexagonal": "double_wedge", "diamond": "double_wedge"}
 
 
+
+def leading_edge_kind(kind: str, le_bevel) -> str:
+    """The leading edge's shape for its drag and its supersonic stand-in: ``square`` for a
+    square section and for a hexagon whose leading edge is not bevelled (``le_bevel`` 0),
+    else the section ``kind``."""
+    return "square" if kind == "double_wedge" and le_bevel == 0.0 else kind
+
 @dataclass(frozen=True, kw_only=True)
 class FinSection:
     """Chordwise cross-section of a fin (value object; methods numeric-only).
@@ -79,11 +86,8 @@ class FinSection:
 
     @property
     def leading_edge_kind(self) -> str:
-        """The leading edge's shape for its drag: ``square`` for a square section and for a
-        hexagon whose leading edge is not bevelled (``le_bevel`` 0), else the section."""
-        if self.kind == "double_wedge" and self.le_bevel == 0.0:
-            return "square"
-        return self.kind
+        """:func:`leading_edge_kind` of this section."""
+        return leading_edge_kind(self.kind, self.le_bevel)
 
     @property
     def trailing_edge_base_fraction(self) -> float:
