@@ -124,11 +124,17 @@ class MachPool:
             out.set_result(inner.result())
 
     def cancel_queued(self) -> None:
-        """Cancel the jobs not started (a sweep failed: the others are not needed)."""
+        """Cancel the jobs not started (a sweep failed: the others are not needed).
+
+        Each is also marked as notified (``set_running_or_notify_cancel``, the executor's
+        duty in :mod:`concurrent.futures`): ``Future.cancel`` alone does not wake a
+        thread already waiting in ``as_completed`` or ``wait``, so another sweep waiting
+        on its queued jobs hung for good when one configuration of a build failed."""
         with self._lock:
             queued, self._queue = self._queue, []
         for *_, fut in queued:
-            fut.cancel()
+            if fut.cancel():
+                fut.set_running_or_notify_cancel()
 
     def shutdown(self) -> None:
         with self._lock:

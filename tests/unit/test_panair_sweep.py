@@ -429,3 +429,34 @@ def test_mach_pool_job_done_before_its_callback_is_attached():
         pytest.fail("MachPool.submit deadlocked on a job finished before its callback")
     pool.shutdown()
     assert out == [1.0, 2.0, 3.0]
+
+
+def test_mach_pool_cancel_queued_wakes_a_waiting_sweep():
+    """A sweep waiting in ``as_completed`` on its queued jobs when another configuration
+    fails and ``cancel_queued`` runs (``aero build`` of a two-stage rocket whose stack
+    failed) gets its jobs back as cancelled.  Before the fix the waiters were never
+    notified and the build hung with idle workers (found by a feature fuzz, session 20);
+    the waiter runs in a thread so a hang fails the test instead of hanging it."""
+    import threading
+    from concurrent.futures import CancelledError, as_completed
+
+    from panair.mach_pool import MachPool
+    with MachPool(1) as pool:
+        busy = pool.submit(10.0, time_sleep, 1.0)            # holds the only worker
+        queued = [pool.submit(c, float, c) for c in (1.0, 2.0)]
+        seen = []
+
+        def sweep():
+            for f in as_completed(queued):
+                seen.append(f.cancelled())
+
+        t = threading.Thread(target=sweep, daemon=True)
+        t.start()
+        time_sleep(0.2)                                      # the sweep is waiting
+        pool.cancel_queued()
+        t.join(10)
+        assert not t.is_alive(), "a sweep waiting on cancelled jobs hung"
+        assert seen == [True, True]
+        with pytest.raises(CancelledError):
+            queued[0].result()
+        assert busy.result() is None                         # the running job finishes
