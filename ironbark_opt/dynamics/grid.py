@@ -166,13 +166,14 @@ class GridMixin:
         rockets, is left out: the integrator advances it exactly.
         """
         cache = self.__dict__.setdefault("_jac_cache", {})
-        if f.name() not in cache:
+        key = (f.name(), id(f))         # a staged rocket's sustainer has its own rhs_boost / rhs_coast
+        if key not in cache:
             xs, ts, ps = ca.SX.sym("x", 13), ca.SX.sym("t"), ca.SX.sym("p", self.n_p)
             # without the roll equation's damping and forcing: the integrator advances
             # them exactly (integrator._splitting, as rk4_step)
             xdot = _splitting(f, ps)[0](xs, ts)
-            cache[f.name()] = ca.Function(f"jac_{f.name()}", [xs, ts, ps], [ca.jacobian(xdot, xs)])
-        jac = cache[f.name()]
+            cache[key] = ca.Function(f"jac_{f.name()}", [xs, ts, ps], [ca.jacobian(xdot, xs)])
+        jac = cache[key]
         x = np.atleast_2d(np.asarray(x, dtype=float).T).T
         t = np.broadcast_to(np.asarray(t, dtype=float), (x.shape[1],))
         p = np.asarray(p, dtype=float)

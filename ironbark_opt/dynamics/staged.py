@@ -167,6 +167,46 @@ class StagedFlightModel:
         self._traj = {"sustainer_boost": phase_trajectory(self._step["sustainer_boost"], self.n_sboost, "traj_sb"),
                       "coast": phase_trajectory(self._step["coast"], self.n_scoast, "traj_sc"),
                       "stack_coast": phase_trajectory(self._step["stack_coast"], self.n_stack_coast, "traj_stc")}
+        self._choose_sustainer_grid(setup.nominal_parameters())
+
+    def _choose_sustainer_grid(self, p) -> None:
+        """The sustainer's RK4 steps from the *nominal* flight, by the stability rule of
+        the single-stage grid (:mod:`ironbark_opt.dynamics.grid`: |lambda| dt within
+        ``STABLE_LAMBDA_DT`` at the stiffest states, the boost's steps doubled while a
+        provisional boost blows up).  Fixed once, so every later run, batch and the
+        symbolic flight share it.  Before (fixed 0.02 s boost steps and 400 coast steps
+        over the coast), a light sustainer whose pitch mode is stiffer than that (2.3 kg,
+        85 mm, Mach 1.4 at burnout: 6 coast steps to Mach 412) diverged and was refused."""
+        from ironbark_opt.dynamics.grid import MAX_BOOST_DOUBLINGS
+        sep = self._to_separation(p)
+        x_sep, _ = self._separate(sep["x"], sep["t_s"], p)
+        t_s = sep["t_s"]
+        t_b2 = float(self.setup.sustainer.motor.burn_time) * float(p[params.index("burn_time_scale")])
+        stable = lambda phase, x, t: self.stack.stable_step(self.rhs[phase], x, t, p)
+        for _ in range(MAX_BOOST_DOUBLINGS + 1):
+            x_b = np.array(self._traj["sustainer_boost"](x_sep, t_s, t_b2, p))[:, -1]
+            if np.all(np.isfinite(x_b)):
+                break
+            self._set_sustainer_steps("sustainer_boost", 2 * self.n_sboost)
+        dt = min(stable("sustainer_boost", x_sep, t_s), stable("sustainer_boost", x_b, t_b2))
+        if (t_b2 - t_s) / self.n_sboost > dt:
+            self._set_sustainer_steps("sustainer_boost", int(math.ceil((t_b2 - t_s) / dt)))
+            x_b = np.array(self._traj["sustainer_boost"](x_sep, t_s, t_b2, p))[:, -1]
+        vz_b = float(self.stack.vz_l(x_b))
+        if vz_b > 0:                    # else run() says the sustainer never climbs
+            span = vz_b / G0 + 2.0                               # run()'s first coast horizon
+            n = int(math.ceil(span / stable("coast", x_b, t_b2)))
+            if n > self.n_scoast:
+                self._set_sustainer_steps("coast", 25 * int(math.ceil(n / 25)))
+
+    def _set_sustainer_steps(self, phase: str, n: int) -> None:
+        if phase == "coast":
+            self.n_scoast = int(n)
+            self._traj["coast"] = phase_trajectory(self._step["coast"], self.n_scoast, "traj_sc")
+        else:
+            self.n_sboost = int(n)
+            self._traj["sustainer_boost"] = phase_trajectory(self._step["sustainer_boost"], self.n_sboost,
+                                                             "traj_sb")
 
     def __getattr__(self, name):
         # anything of FlightSetup / FlightModel not built for staged rockets (ballast, AD, batches)
@@ -306,17 +346,9 @@ class StagedFlightModel:
         """Stack state -> sustainer state at separation (rigid-body CG shift)."""
         return np.array(self.separate(x, t, p)).ravel(), None
 
-    def run(self, p, *, descent: bool = False) -> dict:
-        """Fly to the sustainer's apogee (see the module docstring).
-
-        Returns
-        -------
-        dict as :meth:`FlightModel.run` (``t_burnout``: the sustainer's burnout; with
-        ``descent`` the sustainer's ``t_landing`` and ``x_landing``, the time series
-        ending at apogee)
-        plus ``t_separation`` [s], ``x_separation`` (13,), ``t_booster_burnout`` [s]
-        and ``booster`` (:meth:`fly_booster`, when the setup has the booster).
-        """
+    def _to_separation(self, p) -> dict:
+        """The stack from the pad to separation: rail, boost and (with a delay) its
+        coast; the stack's state ``x`` at ``t_s`` and the samples for the time series."""
         st = self.stack
         p = np.asarray(p, dtype=float).ravel()
         s = p[params.index("burn_time_scale")]
@@ -337,6 +369,26 @@ class StagedFlightModel:
             parts_x.append(X)
             phases += ["stack_coast"] * X.shape[1]
             x = X[:, -1]
+        return dict(parts_t=parts_t, parts_x=parts_x, phases=phases, x=x, t_s=t_s, t_r=t_r, t_b1=t_b1,
+                    X_rail=X_rail)
+
+    def run(self, p, *, descent: bool = False) -> dict:
+        """Fly to the sustainer's apogee (see the module docstring).
+
+        Returns
+        -------
+        dict as :meth:`FlightModel.run` (``t_burnout``: the sustainer's burnout; with
+        ``descent`` the sustainer's ``t_landing`` and ``x_landing``, the time series
+        ending at apogee)
+        plus ``t_separation`` [s], ``x_separation`` (13,), ``t_booster_burnout`` [s]
+        and ``booster`` (:meth:`fly_booster`, when the setup has the booster).
+        """
+        st = self.stack
+        p = np.asarray(p, dtype=float).ravel()
+        s = p[params.index("burn_time_scale")]
+        sep = self._to_separation(p)
+        parts_t, parts_x, phases = sep["parts_t"], sep["parts_x"], sep["phases"]
+        x, t_s, t_r, t_b1, X_rail = sep["x"], sep["t_s"], sep["t_r"], sep["t_b1"], sep["X_rail"]
         x_sep, _ = self._separate(x, t_s, p)
         t_b2 = float(self.setup.sustainer.motor.burn_time) * s
         X_sb = np.array(self._traj["sustainer_boost"](x_sep, t_s, t_b2, p))

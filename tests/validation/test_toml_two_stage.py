@@ -63,3 +63,48 @@ def test_two_stage_tables_are_refused_until_supported(tmp_path):
     rf = loads_rocket_toml(text, path)
     with pytest.raises(InputError, match="2 \\[\\[stage\\]\\] tables"):
         staged_setup_from_toml(rf)
+
+
+def _light_pair(tmp_path) -> Path:
+    """A light two-stage rocket (85 mm, 2.3 kg sustainer on a 2.2 kg booster, an L640
+    each): the sustainer's pitch mode at its Mach 1.4 burnout is stiffer than fixed
+    0.02 s boost steps and 400 coast steps allow (a feature fuzz, session 20)."""
+    motor = (DATA / "motors" / "Cesaroni_2772L640-P.eng").as_posix()
+    fins = ('[[component]]\ntype = "trapezoidal_fins"\ncount = 4\nx = {x}\nthickness = 0.0038\n'
+            'root_chord = 0.157\ntip_chord = 0.0785\nspan = 0.062\nsweep_length = 0.061\n')
+    (tmp_path / "booster.toml").write_text(
+        '[rocket]\nname = "light booster"\n[rocket.mass_override]\nmass = 2.168\ncg_x = 0.587\n'
+        'I_transverse = 0.249\nI_axial = 0.002\n[[component]]\ntype = "body_tube"\nlength = 1.1744\n'
+        f'radius = 0.0425\n{fins.format(x=1.0097)}[motor]\nfile = "{motor}"\nnozzle_x = 1.1744\n')
+    path = tmp_path / "sustainer.toml"
+    path.write_text(
+        '[rocket]\nname = "light sustainer"\n[rocket.mass_override]\nmass = 2.338\ncg_x = 0.493\n'
+        'I_transverse = 0.19\nI_axial = 0.0021\n[[component]]\ntype = "nose_cone"\nshape = "conical"\n'
+        'length = 0.4256\nradius = 0.0425\n[[component]]\ntype = "body_tube"\nlength = 0.561\n'
+        f'radius = 0.0425\n{fins.format(x=0.8255)}[[component]]\ntype = "rail_buttons"\nx_fore = 0.493\n'
+        'x_aft = 0.789\nouter_diameter = 0.0124\nheight = 0.0142\n'
+        f'[motor]\nfile = "{motor}"\nnozzle_x = 0.9866\n[launch]\nrail_length = 5.0\n'
+        '[[stage]]\nfile = "booster.toml"\n')
+    return path
+
+
+@pytest.mark.filterwarnings("ignore::UserWarning")
+def test_light_sustainer_grid_follows_its_stiffness(tmp_path):
+    """The sustainer's boost and coast steps are chosen from the nominal flight's
+    stiffness (StagedFlightModel._choose_sustainer_grid, the single-stage rule of
+    dynamics/grid.py).  Before, this flight diverged in 6 coast steps (Mach 412) and was
+    refused.  Reference: the same flight on 4x finer boost steps and 8x more coast steps
+    (RK4's error falls 4th-order); bound 0.2 % of the apogee."""
+    from ironbark_opt.dynamics.model import Steps
+    from ironbark_opt.dynamics.staged import StagedFlightModel
+    setup = load_setup(_light_pair(tmp_path))
+    model = StagedFlightModel(setup)
+    flight = simulate(setup, model=model)
+    fine = simulate(setup, steps=Steps(dt_boost=0.005, n_coast=8 * model.n_scoast))
+    s = flight.summary_values
+    err = flight.apogee_agl / fine.apogee_agl - 1
+    print(f"light two-stage: apogee {flight.apogee_agl:.2f} m (finer grid {fine.apogee_agl:.2f} m, "
+          f"{100 * err:+.4f} %), max Mach {s['max_mach']:.3f}; sustainer steps boost {model.n_sboost}, "
+          f"coast {model.n_scoast}")
+    assert s["max_mach"] < 2.0 and model.n_scoast > 400
+    assert abs(err) < 0.002
