@@ -289,3 +289,30 @@ def test_fins_in_line_a_wake_ends_on_the_fin_behind():
     # no wake panel between the aft fins' leading and trailing edges
     xw = panels.wake_corners[:, :, 0]
     assert not np.any((xw.max(axis=1) > 18.0 + 1e-9) & (xw.min(axis=1) < 19.0 - 1e-9))
+
+
+def test_fins_in_line_a_wake_ends_on_the_first_fin_it_meets():
+    """Three 4-fin sets in line, the middle one narrower (a two-stage stack whose
+    booster has a small forward set): the forward fins' wake stations inside the middle
+    set's span end on its leading edge, those beside it on the aft set's.  Until session
+    20 only the first fin behind was looked at, so the outer stations ran on through
+    the aft fin in its plane (a fuzzed two-stage stack: |Cp| 3.5e4 at Mach 0.05)."""
+    body = BodyGeometry(np.array([0.0, 2.84, 20.0]), np.array([0.0, 0.5, 0.5]))
+    fore = FinGeometry(4, 1.0, 1.0, 1.0, 0.0, 9.0, 0.08, roll=np.pi / 4)
+    mid = FinGeometry(4, 1.0, 1.0, 0.5, 0.0, 13.0, 0.08, roll=np.pi / 4)
+    aft = FinGeometry(4, 1.0, 1.0, 1.2, 0.0, 18.0, 0.08, roll=np.pi / 4)
+    opt = MeshOptions(n_theta=16, n_chord=6, n_span=4)
+    nets = mesh_rocket(RocketGeometry(body, (fore, mid, aft)), symmetric=True, options=opt)
+    fore_wakes = [n for n in nets if n.kind == "wake" and n.name in ("wake0", "wake1")]
+    assert len(fore_wakes) == 2
+    for w in fore_wakes:
+        r = np.hypot(w.points[:, 0, 1], w.points[:, 0, 2])
+        ends = w.points[:, 1, 0]
+        np.testing.assert_allclose(ends[r <= 0.5 + 0.5 + 1e-9], 13.0)     # on the middle fin
+        np.testing.assert_allclose(ends[r > 0.5 + 0.5 + 1e-9], 18.0)      # beside it, on the aft fin
+        assert np.all(w.meta["interior"][:, 1])                           # nothing shed past them
+    panels = build_panels(nets, symmetric=True)
+    xw = panels.wake_corners[:, :, 0]
+    rw = np.hypot(panels.wake_corners[:, :, 1], panels.wake_corners[:, :, 2])
+    through_aft = (xw.max(axis=1) > 18.0 + 1e-9) & (xw.min(axis=1) < 19.0 - 1e-9) & (rw.min(axis=1) < 1.7)
+    assert not np.any(through_aft)
