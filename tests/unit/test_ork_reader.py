@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import gzip
 import math
+import os
+import warnings
 import zipfile
 from functools import lru_cache
 from pathlib import Path
@@ -372,3 +374,28 @@ def test_auto_radius_with_a_cached_number_is_automatic(tmp_path):
     # reference diameter: the largest body radius (0.05), not the stale 0.056
     from ironbark_opt.openrocket.build import geometry
     assert geometry(doc).reference_radius() == pytest.approx(0.05)
+
+
+def test_unverifiable_rse_motor_is_warned_about(monkeypatch, tmp_path):
+    """'01.One-stage_OR22.02.ork' names a G80T with the digest of OpenRocket's 136 N s G80;
+    with only tests/data/motors on the path the 100 N s AeroTech_G80T.rse (no digest can be
+    computed for a .rse) was flown without a word: apogee 526 m against OpenRocket's 706 m."""
+    from ironbark_opt.openrocket.motors import find_motor_file
+    doc = read_ork(DATA / "01.One-stage_OR22.02.ork")
+    entry = next(m for c in doc.configs for _, m in c.motors if m.designation == "G80T")
+    assert entry.digest == "bc77ef06b0e4f9471985fe24e1d7fbd6"
+    motors = Path(__file__).parents[1] / "data" / "motors"
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(motors))
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    with pytest.warns(UserWarning, match=r"cannot be checked against the motor the \.ork.*99\.72 N s"):
+        hit = find_motor_file("G80T", "AeroTech", DATA / "01.One-stage_OR22.02.ork", entry.digest)
+    assert hit.verified is None and hit.path == motors / "AeroTech_G80T.rse"
+    rse_impulse = hit.motor.total_impulse
+    # the digest-verified .eng (tests/data/ork/motors) wins, without a warning
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", os.pathsep.join([str(DATA / "motors"), str(motors)]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        hit = find_motor_file("G80T", "AeroTech", DATA / "01.One-stage_OR22.02.ork", entry.digest)
+    assert hit.verified is True and hit.path.name == "AeroTech_G80_1.eng"
+    # the design's motor: 133.2 N s, a third more than the .rse's 99.7 N s
+    assert hit.motor.total_impulse > 1.3 * rse_impulse
