@@ -399,3 +399,16 @@ def test_unverifiable_rse_motor_is_warned_about(monkeypatch, tmp_path):
     assert hit.verified is True and hit.path.name == "AeroTech_G80_1.eng"
     # the design's motor: 133.2 N s, a third more than the .rse's 99.7 N s
     assert hit.motor.total_impulse > 1.3 * rse_impulse
+
+
+def test_cd_override_is_named_not_dropped_silently():
+    """OpenRocket's Cd override is not flown (drag from the geometry): each overridden
+    component is named in a warning ('Base drag hack (short-wide).ork' overrides one to
+    Cd 0); a file without overrides reads without one."""
+    with pytest.warns(UserWarning, match=r"drag coefficient override Cd = 0 is not applied") as rec:
+        read_ork(DATA / "Base drag hack (short-wide).ork")
+    said = [str(w.message) for w in rec if "override Cd" in str(w.message)]
+    assert len(said) == 1 and "subcomponents" in said[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_ork(SIMPLE)
