@@ -19,7 +19,7 @@ from .mesh import BodyGeometry, FinGeometry, RocketGeometry
 __all__ = ["from_rocket"]
 
 
-def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
+def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> RocketGeometry:
     """Mesher geometry of a Rocket.
 
     Parameters
@@ -27,6 +27,10 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
     rocket : ironbark_opt.rocket.Rocket
     n_profile : int
         Stations of ``Rocket.body_profile`` used for the body shape.
+    fixed_roll : bool
+        Mesh a set of one or two fins at its own roll angle (a model held at one roll,
+        e.g. a wind-tunnel test).  Default: at 45 deg to the pitch plane, the roll
+        average a table flown at every roll angle needs (with a warning).
 
     Returns
     -------
@@ -60,7 +64,7 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
             # so an even count is meshed with no fin in the symmetry plane (a half model,
             # a quarter of the dense solve's work) whatever the set's own roll.
             roll = np.pi / fs.count
-        elif fs.count <= 2:
+        elif fs.count <= 2 and not fixed_roll:
             # One or two fins: the normal force in the pitch plane goes with sin^2 of each
             # fin's angle from it and depends on roll, which a polar table (flown at every
             # roll angle) cannot hold.  Meshed at 45 deg, where sum sin^2 = N/2, the roll

@@ -22,12 +22,12 @@ def _rocket(**fin_kw):
                                         sweep_length=0.05, **fin_kw)])
 
 
-def _fin_tip_angles(rocket):
+def _fin_tip_angles(rocket, fixed_roll=False):
     """Angles [deg] of the meshed fins' tips, from +y toward +z (FinSet.roll convention)."""
     from panair.geometry_adapter import from_rocket
     from panair.mesh import mesh_rocket
     out = []
-    for net in mesh_rocket(from_rocket(rocket)):
+    for net in mesh_rocket(from_rocket(rocket, fixed_roll=fixed_roll)):
         if net.name.startswith("fin") and net.name[3:].isdigit():
             p = net.points.reshape(-1, 3)
             tip = p[np.argmax(np.hypot(p[:, 1], p[:, 2]))]
@@ -58,6 +58,16 @@ def test_roll_angle_places_the_meshed_fins(count, roll_deg, expected):
     assert len(said) == (1 if count <= 2 else 0) and all("fin set" in m for m in said)
     print(count, roll_deg, got)
     assert got == pytest.approx(expected, abs=0.01)
+
+
+@pytest.mark.parametrize("count, roll_deg, expected", [
+    (2, None, [0.0, 180.0]),                      # default: across the pitch plane
+    (2, 90.0, [90.0, 270.0]),                     # in the pitch plane
+])
+def test_fixed_roll_keeps_one_or_two_fins_at_their_roll(count, roll_deg, expected):
+    """A model held at one roll (Allen's tunnel fin-body): the fins where the file puts them."""
+    roll = None if roll_deg is None else math.radians(roll_deg)
+    assert _fin_tip_angles(_rocket(count=count, roll=roll), fixed_roll=True) == pytest.approx(expected, abs=0.01)
 
 
 def test_toml_roll_and_ork_rotation_are_read(tmp_path):
