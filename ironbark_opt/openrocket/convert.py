@@ -22,8 +22,16 @@ SECTION_VOLUME = {"square": 1.0, "rounded": 0.99, "airfoil": 0.85}
 _SECTIONS = {"square": "square", "rounded": "rounded", "airfoil": "airfoil"}
 
 
+#: Ironbark field names -> the OpenRocket XML element that holds the value
+ORK_ELEMENTS = {"points": "finpoints", "root_chord": "rootchord", "tip_chord": "tipchord",
+                "span": "height", "sweep_length": "sweeplength", "count": "fincount",
+                "fore_radius": "foreradius", "aft_radius": "aftradius",
+                "shape_parameter": "shapeparameter", "ogive_radius": "shapeparameter"}
+
+
 def _wrap(comp: OrkComponent, err: InputError) -> InputError:
-    field = f"{comp.path}/{err.field}" if err.field else comp.path
+    """``err`` naming the component and the file's element (``.../freeformfinset[1]/finpoints``)."""
+    field = f"{comp.path}/{ORK_ELEMENTS.get(err.field, err.field)}" if err.field else comp.path
     return InputError(f"'{comp.name}': {err.message}", source=comp.element.source, field=field)
 
 

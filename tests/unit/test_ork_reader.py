@@ -412,3 +412,25 @@ def test_cd_override_is_named_not_dropped_silently():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         read_ork(SIMPLE)
+
+
+def test_bad_fin_outline_names_the_files_element(tmp_path):
+    """A free-form fin whose outline crosses itself (and a trapezoid of negative height)
+    is refused naming the element of the file (finpoints, height), not Ironbark's own
+    field name (points, span)."""
+    from ironbark_opt.openrocket.build import load_ork_geometry
+    xml = _xml("A simple model rocket.ork")
+    start, end = xml.index("<trapezoidfinset>"), xml.index("</trapezoidfinset>")
+    fin = xml[start:end]
+    shape = fin[fin.index("<rootchord>"):fin.index("</height>") + len("</height>")]
+    pts = "".join(f'<point x="{x}" y="{y}"/>' for x, y in ((0, 0), (0.05, 0.03), (0.0, 0.03), (0.05, 0)))
+    free = (fin.replace(shape, f"<finpoints>{pts}</finpoints>").replace("<trapezoidfinset>", "<freeformfinset>")
+            + "</freeformfinset>")
+    text = xml[:start] + free + xml[end + len("</trapezoidfinset>"):]
+    with pytest.raises(InputError, match="crosses itself") as err:
+        load_ork_geometry(_write(tmp_path, text))
+    assert err.value.field.endswith("freeformfinset[1]/finpoints")
+    bad = xml.replace("<height>0.03</height>", "<height>0.0</height>", 1)
+    with pytest.raises(InputError) as err:
+        load_ork_geometry(_write(tmp_path, bad, "h.ork"))
+    assert err.value.field.endswith("trapezoidfinset[1]/height"), err.value.field
