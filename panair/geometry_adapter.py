@@ -8,6 +8,8 @@ table has no roll coefficients.
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from ironbark_opt.errors import InputError
@@ -17,7 +19,7 @@ from .mesh import BodyGeometry, FinGeometry, RocketGeometry
 __all__ = ["from_rocket"]
 
 
-def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
+def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> RocketGeometry:
     """Mesher geometry of a Rocket.
 
     Parameters
@@ -25,6 +27,10 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
     rocket : ironbark_opt.rocket.Rocket
     n_profile : int
         Stations of ``Rocket.body_profile`` used for the body shape.
+    fixed_roll : bool
+        Mesh a set of one or two fins at its own roll angle (a model held at one roll,
+        e.g. a wind-tunnel test).  Default: at 45 deg to the pitch plane, the roll
+        average a table flown at every roll angle needs (with a warning).
 
     Returns
     -------
@@ -58,6 +64,19 @@ def from_rocket(rocket, *, n_profile: int = 400) -> RocketGeometry:
             # so an even count is meshed with no fin in the symmetry plane (a half model,
             # a quarter of the dense solve's work) whatever the set's own roll.
             roll = np.pi / fs.count
+        elif fs.count <= 2 and not fixed_roll:
+            # One or two fins: the normal force in the pitch plane goes with sin^2 of each
+            # fin's angle from it and depends on roll, which a polar table (flown at every
+            # roll angle) cannot hold.  Meshed at 45 deg, where sum sin^2 = N/2, the roll
+            # average Barrowman's N/2 stands for (Barrowman 1967 sec. 3; the empirical
+            # path's fin lift), not at the set's own roll (two fins across the pitch plane
+            # have twice that lift, two in it none).
+            roll = np.pi / 4
+            warnings.warn(f"fin set '{fs.name}' has {fs.count} fin{'s' if fs.count > 1 else ''}: "
+                          f"its lift depends on roll; the table holds the roll average (N/2 of "
+                          f"one fin's, Barrowman), with the fins at 45 deg to the pitch plane "
+                          f"(in the plane of the fins they give no restoring moment)",
+                          UserWarning, stacklevel=2)
         if outline is None:
             root, tip, sweep = fs.root_chord, fs.tip_chord, fs.sweep_length
         else:

@@ -62,7 +62,7 @@ def ogival_nose(rocket):
 def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float = 1.0,
                  workers: int = 2, progress: bool = False, use_panair: bool = False,
                  checkpoint_dir=None, extra_metadata: dict | None = None,
-                 fin_roll_offset: float = 0.0, pool=None):
+                 fin_roll_offset: float = 0.0, pool=None, fixed_roll: bool = False):
     """Build the AeroTable of ``rocket`` (:class:`ironbark_opt.rocket.Rocket`).
 
     Parameters
@@ -81,6 +81,9 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
     fin_roll_offset : float [rad]
         Every fin set meshed rolled this much further (from +z toward +y); a
         roll average of two orthogonal rolls (:mod:`panair.parallel_table`).
+    fixed_roll : bool
+        One or two fins at their own roll (:func:`~panair.geometry_adapter.from_rocket`;
+        a wind-tunnel model), not at the roll average a flight table needs.
     """
     from ironbark_opt.aero.base_drag import BaseDrag
     from ironbark_opt.aero.empirical_drag import separated_pressure_ca
@@ -93,7 +96,7 @@ def rocket_table(rocket, aero_spec, mach=None, alpha_deg=None, *, refine: float 
 
     mach = default_mach_grid() if mach is None else np.asarray(mach, float)
     alpha_deg = np.asarray(DEFAULT_ALPHA_DEG if alpha_deg is None else alpha_deg, float)
-    geom = from_rocket(rocket)
+    geom = from_rocket(rocket, fixed_roll=fixed_roll)
     if fin_roll_offset:
         geom = geom.with_fins_rolled(fin_roll_offset)
     sref = rocket.reference_area()

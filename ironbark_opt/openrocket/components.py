@@ -97,7 +97,7 @@ class OrkComponent:
         CG override, aft of the component's front end.
     override_cg_subtree : bool
     override_cd : float [-] or None
-        Read but not yet applied to the aerodynamics.
+        Read, not applied to the aerodynamics (warned about: tree._warn_cd_overrides).
     """
 
     kind: str

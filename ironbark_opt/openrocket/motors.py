@@ -246,8 +246,9 @@ def find_motor_file(designation: str, manufacturer: str, ork_path,
     """The motor file (and its SolidMotor) an .ork configuration names.
 
     A local file whose OpenRocket digest equals ``digest`` wins over other
-    files with the same designation; a file whose digest differs is used only
-    when nothing better exists, with a warning.
+    files with the same designation; a file that cannot be checked (.rse) or
+    whose digest differs is used only when nothing better exists, with a
+    warning (when the .ork has a digest).
 
     Raises
     ------
@@ -257,6 +258,14 @@ def find_motor_file(designation: str, manufacturer: str, ork_path,
     dirs = search_dirs(Path(ork_path))
     hit = _local(designation, manufacturer, dirs, digest)
     if hit is not None:
+        if hit.verified is None and digest:
+            # a .rse has no OpenRocket digest here: the design's motor may be another
+            # variant of the designation (AeroTech's 100 N s and 136 N s G80T both exist)
+            warnings.warn(f"motor {designation}: {hit.path} cannot be checked against the motor "
+                          f"the .ork was designed with (OpenRocket digest {digest}; only .eng files "
+                          f"are checked); its total impulse is {hit.motor.total_impulse:.4g} N s; if "
+                          f"OpenRocket's differs, put that motor's .eng next to the .ork",
+                          UserWarning, stacklevel=2)
         if hit.verified is False:
             warnings.warn(f"motor {designation}: {hit.path} differs from the motor the .ork was "
                           f"designed with (OpenRocket digest {digest}); using it anyway",

@@ -13,6 +13,7 @@ it (``CenteringRing.getInnerRadius``).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 from ironbark_opt.openrocket import components as oc
@@ -348,4 +349,17 @@ def build_tree(root: Element) -> OrkRocket:
     for i, pod in enumerate(ork.pods):            # stage numbers after the axial stages
         for c in pod.walk():
             c.stage = len(stages) + i
+    _warn_cd_overrides(ork)
     return ork
+
+
+def _warn_cd_overrides(ork: OrkRocket) -> None:
+    """Warn, naming each component, that OpenRocket's drag-coefficient overrides
+    (``<overridecd>``, written only when set) are not flown: Ironbark-Opt's drag comes
+    from the geometry (empirical or panel tables), so a Cd override (e.g. the 'base drag
+    hack' Cd 0) would otherwise be dropped without a word."""
+    for c in ork.components():
+        if c.override_cd is not None:
+            warnings.warn(f"'{c.name}' ({c.element.path}): OpenRocket's drag coefficient "
+                          f"override Cd = {c.override_cd:g} is not applied; its drag is computed "
+                          f"from the geometry", UserWarning, stacklevel=3)

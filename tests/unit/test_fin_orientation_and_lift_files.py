@@ -2,6 +2,7 @@
 fin lift-curve / airfoil-polar files in the Barrowman fin slope, each against an
 analytic or independent number."""
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -21,12 +22,12 @@ def _rocket(**fin_kw):
                                         sweep_length=0.05, **fin_kw)])
 
 
-def _fin_tip_angles(rocket):
+def _fin_tip_angles(rocket, fixed_roll=False):
     """Angles [deg] of the meshed fins' tips, from +y toward +z (FinSet.roll convention)."""
     from panair.geometry_adapter import from_rocket
     from panair.mesh import mesh_rocket
     out = []
-    for net in mesh_rocket(from_rocket(rocket)):
+    for net in mesh_rocket(from_rocket(rocket, fixed_roll=fixed_roll)):
         if net.name.startswith("fin") and net.name[3:].isdigit():
             p = net.points.reshape(-1, 3)
             tip = p[np.argmax(np.hypot(p[:, 1], p[:, 2]))]
@@ -39,15 +40,34 @@ def _fin_tip_angles(rocket):
     # '+' layout of 4 fins: the polar table is roll-independent for >= 3 fins, so an even
     # count is meshed as a half model with no fin in the x-z plane
     (4, 0.0, [45.0, 135.0, 225.0, 315.0]),
-    (2, None, [0.0, 180.0]),                      # default: across the pitch plane
-    (2, 90.0, [90.0, 270.0]),                     # in the pitch plane
+    # one or two fins: lift depends on roll, the polar table is flown at every roll, so
+    # they are meshed at 45 deg to the pitch plane (sum sin^2 = N/2, Barrowman's roll
+    # average) whatever their own roll (was: across / in the pitch plane, twice / none
+    # of that lift)
+    (2, None, [45.0, 225.0]),
+    (2, 90.0, [45.0, 225.0]),
+    (1, 0.0, [45.0]),
     (3, 30.0, [30.0, 150.0, 270.0]),
 ])
 def test_roll_angle_places_the_meshed_fins(count, roll_deg, expected):
     roll = None if roll_deg is None else math.radians(roll_deg)
-    got = _fin_tip_angles(_rocket(count=count, roll=roll))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        got = _fin_tip_angles(_rocket(count=count, roll=roll))
+    said = [str(w.message) for w in caught if "roll average" in str(w.message)]
+    assert len(said) == (1 if count <= 2 else 0) and all("fin set" in m for m in said)
     print(count, roll_deg, got)
     assert got == pytest.approx(expected, abs=0.01)
+
+
+@pytest.mark.parametrize("count, roll_deg, expected", [
+    (2, None, [0.0, 180.0]),                      # default: across the pitch plane
+    (2, 90.0, [90.0, 270.0]),                     # in the pitch plane
+])
+def test_fixed_roll_keeps_one_or_two_fins_at_their_roll(count, roll_deg, expected):
+    """A model held at one roll (Allen's tunnel fin-body): the fins where the file puts them."""
+    roll = None if roll_deg is None else math.radians(roll_deg)
+    assert _fin_tip_angles(_rocket(count=count, roll=roll), fixed_roll=True) == pytest.approx(expected, abs=0.01)
 
 
 def test_toml_roll_and_ork_rotation_are_read(tmp_path):

@@ -3,6 +3,9 @@ from __future__ import annotations
 
 import gzip
 import math
+import os
+import re
+import warnings
 import zipfile
 from functools import lru_cache
 from pathlib import Path
@@ -372,3 +375,99 @@ def test_auto_radius_with_a_cached_number_is_automatic(tmp_path):
     # reference diameter: the largest body radius (0.05), not the stale 0.056
     from ironbark_opt.openrocket.build import geometry
     assert geometry(doc).reference_radius() == pytest.approx(0.05)
+
+
+def test_unverifiable_rse_motor_is_warned_about(monkeypatch, tmp_path):
+    """'01.One-stage_OR22.02.ork' names a G80T with the digest of OpenRocket's 136 N s G80;
+    with only tests/data/motors on the path the 100 N s AeroTech_G80T.rse (no digest can be
+    computed for a .rse) was flown without a word: apogee 526 m against OpenRocket's 706 m."""
+    from ironbark_opt.openrocket.motors import find_motor_file
+    doc = read_ork(DATA / "01.One-stage_OR22.02.ork")
+    entry = next(m for c in doc.configs for _, m in c.motors if m.designation == "G80T")
+    assert entry.digest == "bc77ef06b0e4f9471985fe24e1d7fbd6"
+    motors = Path(__file__).parents[1] / "data" / "motors"
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", str(motors))
+    monkeypatch.setenv("IRONBARK_OFFLINE", "1")
+    with pytest.warns(UserWarning, match=r"cannot be checked against the motor the \.ork.*99\.72 N s"):
+        hit = find_motor_file("G80T", "AeroTech", DATA / "01.One-stage_OR22.02.ork", entry.digest)
+    assert hit.verified is None and hit.path == motors / "AeroTech_G80T.rse"
+    rse_impulse = hit.motor.total_impulse
+    # the digest-verified .eng (tests/data/ork/motors) wins, without a warning
+    monkeypatch.setenv("IRONBARK_MOTOR_PATH", os.pathsep.join([str(DATA / "motors"), str(motors)]))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        hit = find_motor_file("G80T", "AeroTech", DATA / "01.One-stage_OR22.02.ork", entry.digest)
+    assert hit.verified is True and hit.path.name == "AeroTech_G80_1.eng"
+    # the design's motor: 133.2 N s, a third more than the .rse's 99.7 N s
+    assert hit.motor.total_impulse > 1.3 * rse_impulse
+
+
+def test_cd_override_is_named_not_dropped_silently():
+    """OpenRocket's Cd override is not flown (drag from the geometry): each overridden
+    component is named in a warning ('Base drag hack (short-wide).ork' overrides one to
+    Cd 0); a file without overrides reads without one."""
+    with pytest.warns(UserWarning, match=r"drag coefficient override Cd = 0 is not applied") as rec:
+        read_ork(DATA / "Base drag hack (short-wide).ork")
+    said = [str(w.message) for w in rec if "override Cd" in str(w.message)]
+    assert len(said) == 1 and "subcomponents" in said[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_ork(SIMPLE)
+
+
+def test_bad_fin_outline_names_the_files_element(tmp_path):
+    """A free-form fin whose outline crosses itself (and a trapezoid of negative height)
+    is refused naming the element of the file (finpoints, height), not Ironbark's own
+    field name (points, span)."""
+    from ironbark_opt.openrocket.build import load_ork_geometry
+    xml = _xml("A simple model rocket.ork")
+    start, end = xml.index("<trapezoidfinset>"), xml.index("</trapezoidfinset>")
+    fin = xml[start:end]
+    shape = fin[fin.index("<rootchord>"):fin.index("</height>") + len("</height>")]
+    pts = "".join(f'<point x="{x}" y="{y}"/>' for x, y in ((0, 0), (0.05, 0.03), (0.0, 0.03), (0.05, 0)))
+    free = (fin.replace(shape, f"<finpoints>{pts}</finpoints>").replace("<trapezoidfinset>", "<freeformfinset>")
+            + "</freeformfinset>")
+    text = xml[:start] + free + xml[end + len("</trapezoidfinset>"):]
+    with pytest.raises(InputError, match="crosses itself") as err:
+        load_ork_geometry(_write(tmp_path, text))
+    assert err.value.field.endswith("freeformfinset[1]/finpoints")
+    bad = xml.replace("<height>0.03</height>", "<height>0.0</height>", 1)
+    with pytest.raises(InputError) as err:
+        load_ork_geometry(_write(tmp_path, bad, "h.ork"))
+    assert err.value.field.endswith("trapezoidfinset[1]/height"), err.value.field
+
+
+def test_fins_on_a_boattail_keep_openrockets_tip_radius(tmp_path):
+    """Trapezoidal fins on a conical boattail (12.5 -> 9.5 mm over 40 mm): OpenRocket puts
+    the tip at (sweep, height) above the body radius at the root leading edge
+    (FinSet.getRootPoints, TrapezoidFinSet.getFinPoints), so the tip's distance from the
+    axis is r(x_le) + height wherever the body narrows under it.  Ironbark's fin y is from
+    the surface at the same x: the import must add the narrowing (was: the trapezoid
+    as given, its tip 1.5 mm nearer the axis at the leading edge)."""
+    from ironbark_opt.openrocket.build import load_ork_geometry
+    from ironbark_opt.rocket.fins import FreeformFins
+    xml = _xml("A simple model rocket.ork")
+    start, end = xml.index("<trapezoidfinset>"), xml.index("</trapezoidfinset>") + len("</trapezoidfinset>")
+    fin = xml[start:end]
+    for tag, value in (("rootchord", "0.035"), ("tipchord", "0.02"), ("sweeplength", "0.02")):
+        fin = re.sub(f"<{tag}>[^<]*</{tag}>", f"<{tag}>{value}</{tag}>", fin)
+    tail = ("<transition><name>Boattail</name><length>0.04</length><thickness>0.001</thickness>"
+            "<shape>conical</shape><foreradius>0.0125</foreradius><aftradius>0.0095</aftradius>"
+            f"<subcomponents>{fin}</subcomponents></transition>")
+    text = xml[:start] + xml[end:]
+    stage_end = text.index("</subcomponents>\n      </stage>")
+    text = text[:stage_end] + tail + text[stage_end:]
+    rocket = load_ork_geometry(_write(tmp_path, text))
+    fs = rocket.fin_sets()[0]
+    assert isinstance(fs, FreeformFins)
+    x_le = 0.4 + 0.04 - 0.035                     # bottom-aligned on the boattail
+    assert fs.x == pytest.approx(x_le)
+    radius = lambda x: 0.0125 - 0.003 * (x - 0.4) / 0.04      # the cone
+    pts = fs.planform_points()
+    assert pts[0].tolist() == [0.0, 0.0] and pts[-1].tolist() == pytest.approx([0.035, 0.0])
+    # both tip corners at r(x_le) + height from the axis (the aft one past the boattail's
+    # end, where OpenRocket's mount points stop at the boattail's aft radius)
+    for xi, y in pts[1:-1]:
+        assert radius(min(x_le + xi, 0.44)) + y == pytest.approx(radius(x_le) + 0.03, abs=1e-12)
+    assert float(rocket.radius_at(x_le + 0.02)) == pytest.approx(radius(x_le + 0.02))
+    assert [xi for xi, _ in pts[1:-1]] == pytest.approx([0.02, 0.04])

@@ -249,7 +249,9 @@ def test_allen_fin_body(fin, tmp_path):
     angles = _angles(fin)
     mach = np.array([float(r["mach"]) for r in meas])
     alpha = np.radians([0.0, 1.0, 2.0, 3.0, 4.0, 5.0])
-    t = rocket_table(rk, spec, mach=np.concatenate([[0.05, 0.3], mach]), alpha_deg=np.degrees(alpha))
+    # the tunnel model's two fins across the pitch plane, held at that roll
+    t = rocket_table(rk, spec, mach=np.concatenate([[0.05, 0.3], mach]), alpha_deg=np.degrees(alpha),
+                     fixed_roll=True)
     body_path = tmp_path / f"{fin}_body.toml"
     body_path.write_text(_toml(fin, fins=False))
     subsonic = np.array([m for m in mach if m < 1.0])
