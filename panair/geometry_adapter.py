@@ -42,6 +42,7 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
     x, r = rocket.body_profile(n_profile)
     _check_no_pinch(np.asarray(x, float), np.asarray(r, float))
     fins = []
+    offset = _common_roll_offset(rocket.fin_sets())
     for k, fs in enumerate(rocket.fin_sets()):
         outline = None
         if type(fs).__name__ != "TrapezoidalFins":           # elliptical, free-form
@@ -57,13 +58,10 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
         # fin in the x-z plane for an even count, a fin on top for an odd one) as the
         # mesh's angle from +z toward +y
         roll = (np.pi / 2 - fs.roll_angle) % (2 * np.pi)
-        if fs.count >= 4 and fs.count % 2 == 0:
-            # The table is in polar (total angle of attack) axes, so it stands for every
-            # roll angle; for three or more equally spaced fins the linear normal force is
-            # roll-independent (sum of sin^2 over the fins = N/2, Barrowman 1967 sec. 3),
-            # so an even count is meshed with no fin in the symmetry plane (a half model,
-            # a quarter of the dense solve's work) whatever the set's own roll.
-            roll = np.pi / fs.count
+        if fs.count >= 3:
+            # every set of three or more turned by one angle (_common_roll_offset): the
+            # table stands for every roll of the rocket, the sets' relative roll is kept
+            roll = (roll + offset) % (2 * np.pi)
         elif fs.count <= 2 and not fixed_roll:
             # One or two fins: the normal force in the pitch plane goes with sin^2 of each
             # fin's angle from it and depends on roll, which a polar table (flown at every
@@ -86,6 +84,31 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
                                 te_bevel=sec.te_bevel, outline=outline))
     x, r = _continue_past_fins(np.asarray(x, float), np.asarray(r, float), fins)
     return RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name)
+
+
+def _common_roll_offset(fin_sets) -> float:
+    """The roll [rad] by which every fin set of three or more fins is turned for the mesh.
+
+    The table is in polar (total angle of attack) axes, so it stands for every roll
+    angle of the rocket; for three or more equally spaced fins the linear normal force
+    of one set is roll-independent (sum of sin^2 over the fins = N/2, Barrowman 1967
+    sec. 3).  So the aft-most such set, if its count is even, is turned to have no fin
+    in the symmetry plane (first fin at pi / count: a half model, a quarter of the dense
+    solve's work), and every other set by the same angle: their roll *relative* to it is
+    the rocket's own.  That relative roll matters: a set in the wake of another, in line
+    or between its fins, loses different lift (a fuzzed rocket with a second 4-fin set
+    1.2 root chords ahead of the main one, Mach 0.3, CN-alpha: in line 12.39 /rad,
+    rolled 45 deg 13.21 /rad; each set alone on the body, summed, 14.65).  Until session 20
+    each even set was turned on its own, so sets the file rolls 45 deg apart were meshed
+    in line.  Sets whose relative roll breaks the mirror symmetry are meshed whole
+    (:func:`is_symmetric`), at about 2.5x the cost."""
+    sets = [fs for fs in fin_sets if fs.count >= 3]
+    if not sets:
+        return 0.0
+    ref = max(sets, key=lambda fs: fs.x)
+    if ref.count % 2:
+        return 0.0
+    return float(np.pi / ref.count - (np.pi / 2 - ref.roll_angle) % (2 * np.pi))
 
 
 #: An interior station narrower than this fraction of the largest radius, with the body
