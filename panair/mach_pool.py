@@ -23,6 +23,7 @@ import heapq
 import itertools
 import threading
 from concurrent.futures import CancelledError, Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 
 from .blas_threads import limit_blas_threads
 
@@ -63,6 +64,17 @@ def _ready() -> bool:
     return True
 
 
+def _worker_died(err: BaseException) -> SolverError:
+    """A worker process ended without a result (the pool is broken: every job fails).
+    The usual cause is the system's out-of-memory killer on a large dense solve."""
+    from ironbark_opt.errors import SolverError
+    out = SolverError("a panel-solve worker process died without a result (killed by the system, most "
+                      "likely out of memory: the dense panel matrices grow with the square of the panel "
+                      "count); build with fewer workers (--workers 1) or a coarser mesh (--refine below 1)")
+    out.__cause__ = err
+    return out
+
+
 class MachPool:
     """``workers`` processes and a queue ordered by cost (largest first).
 
@@ -101,8 +113,13 @@ class MachPool:
             _, _, fn, args, fut = heapq.heappop(self._queue)
             if not fut.set_running_or_notify_cancel():
                 continue                 # cancelled while queued
+            try:
+                inner = self._pool.submit(fn, *args)
+            except BrokenProcessPool as err:     # a worker died: every queued job fails
+                fut.set_exception(_worker_died(err))
+                continue
             self._running += 1
-            started.append((self._pool.submit(fn, *args), fut))
+            started.append((inner, fut))
         return started
 
     def _watch(self, started) -> None:
@@ -113,15 +130,18 @@ class MachPool:
             inner.add_done_callback(lambda f, out=out: self._finished(f, out))
 
     def _finished(self, inner: Future, out: Future) -> None:
-        with self._lock:
-            self._running -= 1
-            started = self._dispatch()
-        self._watch(started)
+        # the caller's future first: nothing below may leave it waiting
         exc = CancelledError() if inner.cancelled() else inner.exception()
+        if isinstance(exc, BrokenProcessPool):
+            exc = _worker_died(exc)
         if exc is not None:
             out.set_exception(exc)
         else:
             out.set_result(inner.result())
+        with self._lock:
+            self._running -= 1
+            started = self._dispatch()
+        self._watch(started)
 
     def cancel_queued(self) -> None:
         """Cancel the jobs not started (a sweep failed: the others are not needed).

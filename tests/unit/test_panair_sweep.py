@@ -460,3 +460,39 @@ def test_mach_pool_cancel_queued_wakes_a_waiting_sweep():
         with pytest.raises(CancelledError):
             queued[0].result()
         assert busy.result() is None                         # the running job finishes
+
+
+def _die():
+    """A job whose worker process is killed (as the out-of-memory killer does)."""
+    import os
+    import signal
+    os.kill(os.getpid(), signal.SIGKILL)
+
+
+def test_mach_pool_worker_killed_fails_every_job_instead_of_hanging():
+    """A worker killed by the system (a fuzzed two-stage stack's dense matrices: 14.7 GB,
+    the out-of-memory killer) broke the process pool; MachPool's completion callback
+    then raised while dispatching the next job and never completed the caller's future,
+    so the build hung for good.  Now the running and the queued jobs fail with a
+    SolverError that names the likely cause and the remedy."""
+    import threading
+
+    from ironbark_opt.errors import SolverError
+    from panair.mach_pool import MachPool
+    results = []
+
+    def run():
+        with MachPool(1) as pool:
+            futs = [pool.submit(2.0, _die)] + [pool.submit(1.0, float, c) for c in (1.0, 2.0)]
+            for f in futs:
+                try:
+                    results.append(f.result(timeout=60))
+                except Exception as err:            # noqa: BLE001 - recorded for the asserts
+                    results.append(err)
+
+    t = threading.Thread(target=run, daemon=True)
+    t.start()
+    t.join(90)
+    assert not t.is_alive(), "MachPool hung after a worker died"
+    assert len(results) == 3 and all(isinstance(r, SolverError) for r in results), results
+    assert "out of memory" in str(results[0]) and "--workers 1" in str(results[0])
