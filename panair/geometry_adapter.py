@@ -9,6 +9,7 @@ table has no roll coefficients.
 from __future__ import annotations
 
 import warnings
+from dataclasses import replace
 
 import numpy as np
 
@@ -83,7 +84,40 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
                                 roll=roll, section=section, le_bevel=sec.le_bevel,
                                 te_bevel=sec.te_bevel, outline=outline))
     x, r = _continue_past_fins(np.asarray(x, float), np.asarray(r, float), fins)
-    return RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name)
+    return _affordable(RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name), rocket.fin_sets())
+
+
+#: Most panels of a whole-rocket model (default subsonic mesh) meshed to keep fin sets'
+#: relative roll; the largest whole model among the fixtures, the stack of 'Two stage
+#: high power rocket.ork' (two 3-fin sets), has 6536.  A fuzzed stack of four 4-fin
+#: sets rolled 45 deg apart had 13016 (18568 supersonic): a worker's dense matrices
+#: reached 14.7 GB and the system killed it.
+WHOLE_MODEL_MAX_PANELS = 8000
+
+
+def _affordable(geom: RocketGeometry, fin_sets) -> RocketGeometry:
+    """``geom``, or its even fin sets in line (each at pi / count, a half model) with a
+    warning, when only their relative roll breaks the mirror symmetry and the whole
+    model it needs would exceed :data:`WHOLE_MODEL_MAX_PANELS`."""
+    if is_symmetric(geom):
+        return geom
+    inline = RocketGeometry(geom.body, tuple(
+        replace(f, roll=np.pi / f.count) if f.count >= 4 and f.count % 2 == 0 else f for f in geom.fins),
+        geom.name)
+    if not is_symmetric(inline):
+        return geom
+    from .mesh import MeshOptions, mesh_rocket
+    n = sum((net.points.shape[0] - 1) * (net.points.shape[1] - 1)
+            for net in mesh_rocket(geom, symmetric=False, options=MeshOptions()) if net.kind == "surface")
+    if n <= WHOLE_MODEL_MAX_PANELS:
+        return geom
+    names = ", ".join(f"'{fs.name}'" for fs in fin_sets if fs.count >= 4 and fs.count % 2 == 0)
+    warnings.warn(f"fin sets {names} are meshed in line (each with no fin in the symmetry plane), not at "
+                  f"their relative roll: the whole-rocket model that roll needs has {n} panels, over "
+                  f"{WHOLE_MODEL_MAX_PANELS} (its dense matrices outgrow a laptop's memory); the lift a set "
+                  "loses in another's wake differs between in line and rolled (by -5 ... +7 % of CN-alpha "
+                  "on the rockets measured)", UserWarning, stacklevel=3)
+    return inline
 
 
 def _common_roll_offset(fin_sets) -> float:

@@ -239,3 +239,19 @@ def test_fin_sets_keep_their_relative_roll():
     print(f"CN-alpha interdigitated {a:.3f} /rad, rolled +17 deg {b:.3f}, in line {c:.3f}")
     assert b == pytest.approx(a, rel=0.02)
     assert abs(a / c - 1) > 0.01
+
+
+def test_fin_sets_in_line_when_the_whole_model_is_too_big(monkeypatch):
+    """Keeping the relative roll needs the whole-rocket model; over
+    WHOLE_MODEL_MAX_PANELS panels (a fuzzed stack of four 4-fin sets: 13016, a worker
+    killed at 14.7 GB) the even sets are meshed in line, a half model, with a warning
+    that names them and the panel count.  Here the limit is lowered to this small rocket."""
+    import panair.geometry_adapter as ga
+    assert not ga.is_symmetric(ga.from_rocket(_two_sets(45, 0)))
+    monkeypatch.setattr(ga, "WHOLE_MODEL_MAX_PANELS", 100)
+    with pytest.warns(UserWarning, match=r"fin sets 'main', 'fwd' are meshed in line .* panels, over 100"):
+        g = ga.from_rocket(_two_sets(45, 0))
+    assert [round(math.degrees(f.roll), 6) for f in g.fins] == [45.0, 45.0] and ga.is_symmetric(g)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")                  # in line already: nothing to say
+        ga.from_rocket(_two_sets(45, 45))
