@@ -91,7 +91,6 @@ def geometry(doc: OrkDocument) -> Rocket:
     comps = [convert.body_component(c) for c in doc.rocket.body()]
     guide = None
     buttons = []                                    # (component, its buttons' stations [m])
-    parents = {id(k): c for c in doc.rocket.core_components() for k in c.children}
     for c in doc.rocket.core_components():          # parallel boosters: openrocket.parallel
         if c.kind == "tubefinset":
             g = c.geo
@@ -104,7 +103,7 @@ def geometry(doc: OrkDocument) -> Rocket:
                                   count=g["count"], body_radius=rb, name=c.name))
             continue
         if c.kind in FINS:
-            comps.append(convert.fin_set(c, parent=parents.get(id(c))))
+            comps.append(convert.fin_set(c))
         elif c.kind == "railbutton":
             n, sep = c.geo["instances"]
             x0 = c.x + 0.5 * c.length

@@ -93,11 +93,9 @@ def body_component(comp: OrkComponent, *, with_mass: bool = False):
         raise _wrap(comp, err) from None
 
 
-def fin_set(comp: OrkComponent, *, with_density: float | None = None,
-            parent: OrkComponent | None = None):
+def fin_set(comp: OrkComponent, *, with_density: float | None = None):
     """The Ironbark fin set of ``comp`` (square section when ``with_density`` is given:
-    OpenRocket's section factor is applied to the mass separately); ``parent``, the body
-    component it sits on, maps a fin on a nose cone or transition (:func:`_on_sloped_body`)."""
+    OpenRocket's section factor is applied to the mass separately)."""
     g = comp.geo
     section = FinSection(kind="square" if with_density is not None
                          else _SECTIONS.get(g["section"], "square"))
@@ -111,50 +109,14 @@ def fin_set(comp: OrkComponent, *, with_density: float | None = None,
                   # OpenRocket's fin rotation: the first fin's angle from +y toward +z [deg]
                   roll=None if rotation is None else math.radians(rotation))
     try:
-        sloped = parent is not None and parent.kind in ("nosecone", "transition")
-        if comp.kind == "trapezoidfinset" and not sloped:
+        if comp.kind == "trapezoidfinset":
             return TrapezoidalFins(root_chord=g["root_chord"], tip_chord=g["tip_chord"],
                                    span=g["span"], sweep_length=g["sweep_length"], **common)
-        if comp.kind == "ellipticalfinset" and not sloped:
+        if comp.kind == "ellipticalfinset":
             return EllipticalFins(root_chord=g["root_chord"], span=g["span"], **common)
-        if sloped:
-            return FreeformFins(points=_on_sloped_body(comp, parent), **common)
         pts = [(float(a), max(float(b), 0.0)) for a, b in g["points"]]
         pts[0] = (0.0, 0.0)
         pts[-1] = (pts[-1][0], 0.0)
         return FreeformFins(points=tuple(pts), **common)
     except InputError as err:
         raise _wrap(comp, err) from None
-
-
-def _on_sloped_body(comp: OrkComponent, parent: OrkComponent) -> tuple:
-    """Outline of a fin on a nose cone or transition in Ironbark's planform frame.
-
-    OpenRocket gives a fin's points with y from the body radius at the root leading edge
-    (``FinSet.getRootPoints``: "relative to (x: fin-front, y: fin-root-radius)"; a
-    trapezoid's tip at (sweep, height), ``TrapezoidFinSet.getFinPoints``), so its tip lies
-    at that radius plus the height even where the body narrows under it.  Ironbark's y is
-    outward from the surface at the same x (:mod:`ironbark_opt.rocket.fins`): each point's
-    y less the body's radius change r(x) - r(x_le) along the root (the parent's profile,
-    clamped to its length as OpenRocket's mount points), as a free-form fin."""
-    import numpy as np
-    g = comp.geo
-    if comp.kind == "trapezoidfinset":
-        pts = [(0.0, 0.0), (g["sweep_length"], g["span"])]
-        if g["tip_chord"] > 1e-4:                       # OpenRocket's tip-collapse rule
-            pts.append((g["sweep_length"] + g["tip_chord"], g["span"]))
-        pts.append((max(g["root_chord"], 1e-4), 0.0))
-    elif comp.kind == "ellipticalfinset":
-        pts = EllipticalFins(root_chord=g["root_chord"], span=g["span"], count=g["count"],
-                             x=comp.x, thickness=1e-6).planform_points()
-    else:
-        pts = g["points"]
-    pts = np.array(pts, dtype=float)
-    body = body_component(parent)
-    x = np.clip(comp.x + pts[:, 0], parent.x, parent.x_end)
-    r = np.asarray(body.radius_at(x), dtype=float)
-    r0 = float(body.radius_at(np.clip(comp.x, parent.x, parent.x_end)))
-    pts[:, 1] = np.maximum(pts[:, 1] - (r - r0), 0.0)
-    pts[0] = (0.0, 0.0)
-    pts[-1, 1] = 0.0
-    return tuple(map(tuple, pts.tolist()))

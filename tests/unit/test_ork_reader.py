@@ -4,7 +4,6 @@ from __future__ import annotations
 import gzip
 import math
 import os
-import re
 import warnings
 import zipfile
 from functools import lru_cache
@@ -435,39 +434,3 @@ def test_bad_fin_outline_names_the_files_element(tmp_path):
     with pytest.raises(InputError) as err:
         load_ork_geometry(_write(tmp_path, bad, "h.ork"))
     assert err.value.field.endswith("trapezoidfinset[1]/height"), err.value.field
-
-
-def test_fins_on_a_boattail_keep_openrockets_tip_radius(tmp_path):
-    """Trapezoidal fins on a conical boattail (12.5 -> 9.5 mm over 40 mm): OpenRocket puts
-    the tip at (sweep, height) above the body radius at the root leading edge
-    (FinSet.getRootPoints, TrapezoidFinSet.getFinPoints), so the tip's distance from the
-    axis is r(x_le) + height wherever the body narrows under it.  Ironbark's fin y is from
-    the surface at the same x: the import must add the narrowing (was: the trapezoid
-    as given, its tip 1.5 mm nearer the axis at the leading edge)."""
-    from ironbark_opt.openrocket.build import load_ork_geometry
-    from ironbark_opt.rocket.fins import FreeformFins
-    xml = _xml("A simple model rocket.ork")
-    start, end = xml.index("<trapezoidfinset>"), xml.index("</trapezoidfinset>") + len("</trapezoidfinset>")
-    fin = xml[start:end]
-    for tag, value in (("rootchord", "0.035"), ("tipchord", "0.02"), ("sweeplength", "0.02")):
-        fin = re.sub(f"<{tag}>[^<]*</{tag}>", f"<{tag}>{value}</{tag}>", fin)
-    tail = ("<transition><name>Boattail</name><length>0.04</length><thickness>0.001</thickness>"
-            "<shape>conical</shape><foreradius>0.0125</foreradius><aftradius>0.0095</aftradius>"
-            f"<subcomponents>{fin}</subcomponents></transition>")
-    text = xml[:start] + xml[end:]
-    stage_end = text.index("</subcomponents>\n      </stage>")
-    text = text[:stage_end] + tail + text[stage_end:]
-    rocket = load_ork_geometry(_write(tmp_path, text))
-    fs = rocket.fin_sets()[0]
-    assert isinstance(fs, FreeformFins)
-    x_le = 0.4 + 0.04 - 0.035                     # bottom-aligned on the boattail
-    assert fs.x == pytest.approx(x_le)
-    radius = lambda x: 0.0125 - 0.003 * (x - 0.4) / 0.04      # the cone
-    pts = fs.planform_points()
-    assert pts[0].tolist() == [0.0, 0.0] and pts[-1].tolist() == pytest.approx([0.035, 0.0])
-    # both tip corners at r(x_le) + height from the axis (the aft one past the boattail's
-    # end, where OpenRocket's mount points stop at the boattail's aft radius)
-    for xi, y in pts[1:-1]:
-        assert radius(min(x_le + xi, 0.44)) + y == pytest.approx(radius(x_le) + 0.03, abs=1e-12)
-    assert float(rocket.radius_at(x_le + 0.02)) == pytest.approx(radius(x_le + 0.02))
-    assert [xi for xi, _ in pts[1:-1]] == pytest.approx([0.02, 0.04])
