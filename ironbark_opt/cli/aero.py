@@ -214,7 +214,8 @@ def method_warnings(md: dict, label: str = "") -> tuple:
     (alpha_deg_extrapolated, mach_local_inclination, mach_sonic_leading_edge)."""
     extrapolated = md.get("alpha_deg_extrapolated", {})
     if extrapolated:
-        warnings.warn(f"{label}linear supersonic theory did not solve every angle of attack; continued "
+        warnings.warn(f"{label}the panel solution did not solve every angle of attack (linear supersonic "
+                      "theory's limits, or a subsonic local pressure past the singular bound); continued "
                       "with Jorgensen's potential-flow shape at Mach: " + "; ".join(
                           f"{m} ({', '.join(f'{a:g}' for a in al)} deg)"
                           for m, al in extrapolated.items()))

@@ -496,3 +496,30 @@ def test_mach_pool_worker_killed_fails_every_job_instead_of_hanging():
     assert not t.is_alive(), "MachPool hung after a worker died"
     assert len(results) == 3 and all(isinstance(r, SolverError) for r in results), results
     assert "out of memory" in str(results[0]) and "--workers 1" in str(results[0])
+
+
+def test_subsonic_angle_past_the_singular_bound_continues_with_jorgensens_shape(monkeypatch):
+    """Subsonic, an angle whose local pressure passes the singular bound above a solved
+    lifting angle (a fin's wake meeting the sharp leading edge of a fin in line behind it:
+    |Cp| 550 at 4 deg, 1.25e4 at 20 deg on a fuzzed stack, the build refused) continues
+    with Jorgensen's potential-flow shape from the last solved angle, as the supersonic
+    solutions do, and is recorded; with no lifting angle solved the error is raised.
+    The bound is lowered here to fall between this mesh's 4 and 12 deg pressures."""
+    import panair.solver.subsonic as sub
+    import panair.sweep as sw
+    g = _bf()
+    panels = build_panels(mesh_rocket(g, symmetric=True, options=COARSE), symmetric=True)
+    alphas = np.radians([0.0, 4.0, 12.0])
+    args = (panels, 0.3, alphas, np.pi * 0.015**2, 0.03, 0.15, "second-order")
+    peak = [float(np.abs(r.cp).max()) for r in make_solver(panels, 0.3, sref=args[3], lref=0.03,
+                                                            xref=0.15).solve(alphas)]
+    assert peak[1] < peak[2]
+    monkeypatch.setattr(sub, "CP_MAX", 0.5 * (peak[1] + peak[2]))
+    m, rows, extra, cp_min, how = sw._solve_one(args)
+    assert extra == pytest.approx([alphas[2]]) and cp_min is None
+    j = sw._jorgensen_potential
+    np.testing.assert_allclose(rows[2], [rows[1][0], rows[1][1] * j(alphas[2]) / j(alphas[1]),
+                                         rows[1][2] * j(alphas[2]) / j(alphas[1])], rtol=1e-12)
+    monkeypatch.setattr(sub, "CP_MAX", 0.5 * (peak[0] + peak[1]))
+    with pytest.raises(SolverError, match="singular surface pressure"):
+        sw._solve_one(args)
