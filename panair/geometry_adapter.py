@@ -42,7 +42,7 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
                          "empirical aerodynamics (Ribner's ring-wing lift, no --table)", field="components")
     x, r = rocket.body_profile(n_profile)
     _check_no_pinch(np.asarray(x, float), np.asarray(r, float))
-    fins = []
+    fins, averaged = [], []
     offset = _common_roll_offset(rocket.fin_sets())
     for k, fs in enumerate(rocket.fin_sets()):
         outline = None
@@ -71,6 +71,7 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
             # path's fin lift), not at the set's own roll (two fins across the pitch plane
             # have twice that lift, two in it none).
             roll = np.pi / 4
+            averaged.append(k)
             warnings.warn(f"fin set '{fs.name}' has {fs.count} fin{'s' if fs.count > 1 else ''}: "
                           f"its lift depends on roll; the table holds the roll average (N/2 of "
                           f"one fin's, Barrowman), with the fins at 45 deg to the pitch plane "
@@ -83,6 +84,8 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
         fins.append(FinGeometry(int(fs.count), root, tip, fs.span, sweep, fs.x, fs.thickness,
                                 roll=roll, section=section, le_bevel=sec.le_bevel,
                                 te_bevel=sec.te_bevel, outline=outline))
+    for k in averaged:
+        fins[k] = _clear_of_others(fins[k], [f for j, f in enumerate(fins) if j != k])
     x, r = _continue_past_fins(np.asarray(x, float), np.asarray(r, float), fins)
     return _affordable(RocketGeometry(BodyGeometry(x, r), tuple(fins), rocket.name), rocket.fin_sets())
 
@@ -118,6 +121,24 @@ def _affordable(geom: RocketGeometry, fin_sets) -> RocketGeometry:
                   "loses in another's wake differs between in line and rolled (by -5 ... +7 % of CN-alpha "
                   "on the rockets measured)", UserWarning, stacklevel=3)
     return inline
+
+
+def _clear_of_others(f: FinGeometry, others) -> FinGeometry:
+    """A set of one or two fins at a roll of its roll average (sum sin^2 = N/2: 45, 135,
+    225 or 315 deg) where no fin of another set overlapping it along the axis lies on
+    the same line (two one-fin sets at 45 deg were one fin meshed twice: OpenRocket's
+    parallel-booster example, its wake network refused)."""
+    def angles(g):
+        return (g.roll + 2 * np.pi * np.arange(g.count) / g.count) % (2 * np.pi)
+
+    near = [g for g in others if g.x_root < f.x_root + f.root_chord and f.x_root < g.x_root + g.root_chord]
+    taken = np.concatenate([angles(g) for g in near]) if near else np.zeros(0)
+    for roll in np.pi / 4 + np.pi / 2 * np.arange(4 if f.count == 1 else 2):
+        mine = angles(replace(f, roll=roll))
+        gap = np.abs((mine[:, None] - taken[None, :] + np.pi) % (2 * np.pi) - np.pi)
+        if not gap.size or gap.min() > 1e-6:
+            return replace(f, roll=float(roll))
+    return f
 
 
 def _common_roll_offset(fin_sets) -> float:

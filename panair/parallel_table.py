@@ -130,7 +130,10 @@ def booster_roll_average(booster, aero_spec, mach, alpha_deg, *, refine: float, 
 
     from .geometry_adapter import from_rocket
     from .rocket_table import rocket_table
-    offsets = roll_offsets(from_rocket(booster))
+    # the fins at their own roll (fixed_roll): the two-roll mean below is the roll average
+    # (meshing one-fin sets at 45 deg instead put OpenRocket's two one-fin sets on one line)
+    kwargs.setdefault("fixed_roll", True)
+    offsets = roll_offsets(from_rocket(booster, fixed_roll=kwargs["fixed_roll"]))
     tables = [rocket_table(booster, aero_spec, mach, alpha_deg, refine=refine, fin_roll_offset=d,
                            checkpoint_dir=None if checkpoint is None else f"{checkpoint}-roll{i}.solved", **kwargs)
               for i, d in enumerate(offsets)]

@@ -255,3 +255,20 @@ def test_fin_sets_in_line_when_the_whole_model_is_too_big(monkeypatch):
     with warnings.catch_warnings():
         warnings.simplefilter("error")                  # in line already: nothing to say
         ga.from_rocket(_two_sets(45, 45))
+
+
+def test_one_fin_sets_at_their_roll_average_do_not_share_a_line():
+    """Two one-fin sets side by side (OpenRocket's parallel booster: two fins 90 deg
+    apart): each at a roll average angle (sum sin^2 = 1/2), but not both at 45 deg,
+    which meshed one fin twice (a wake network refused)."""
+    from panair.geometry_adapter import from_rocket
+    rocket = _rocket(count=1, roll=0.0, name="a")
+    rocket = Rocket("t", list(rocket.components) + [TrapezoidalFins(x=1.1, thickness=0.004, root_chord=0.2,
+                                                              tip_chord=0.1, span=0.1, sweep_length=0.05,
+                                                              count=1, roll=math.pi / 2, name="b")])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        g = from_rocket(rocket)
+    rolls = sorted(round(math.degrees(f.roll) % 360, 6) for f in g.fins)
+    assert rolls == [45.0, 135.0]
+    assert all(math.sin(f.roll) ** 2 == pytest.approx(0.5) for f in g.fins)
