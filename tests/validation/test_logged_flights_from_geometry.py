@@ -30,6 +30,9 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
   pointed tips closed by a strip one fin thickness wide (on the old sine strips the finer
   mesh gave APEX a sliver panel, |Cp| 1.8e4, and aero build refused): FT1 -2.09 -> -2.08 %,
   FT2 +0.72 -> +0.77 %, APEX +6.26 -> +6.27 %.
+- Session 20, a set of one or two fins meshed at 45 deg, its roll average (FT1/FT2's
+  two-fin camera housings were in the pitch plane, no lift): FT1 -2.08 -> -2.15 %, FT2
+  +0.77 -> +0.51 %, APEX +6.25 % unchanged.
 
 Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
 FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).
