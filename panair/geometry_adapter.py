@@ -63,7 +63,7 @@ def from_rocket(rocket, *, n_profile: int = 400, fixed_roll: bool = False) -> Ro
             # every set of three or more turned by one angle (_common_roll_offset): the
             # table stands for every roll of the rocket, the sets' relative roll is kept
             roll = (roll + offset) % (2 * np.pi)
-        elif fs.count <= 2 and not fixed_roll:
+        elif not fixed_roll:
             # One or two fins: the normal force in the pitch plane goes with sin^2 of each
             # fin's angle from it and depends on roll, which a polar table (flown at every
             # roll angle) cannot hold.  Meshed at 45 deg, where sum sin^2 = N/2, the roll
@@ -128,17 +128,18 @@ def _clear_of_others(f: FinGeometry, others) -> FinGeometry:
     225 or 315 deg) where no fin of another set overlapping it along the axis lies on
     the same line (two one-fin sets at 45 deg were one fin meshed twice: OpenRocket's
     parallel-booster example, its wake network refused)."""
-    def angles(g):
-        return (g.roll + 2 * np.pi * np.arange(g.count) / g.count) % (2 * np.pi)
-
     near = [g for g in others if g.x_root < f.x_root + f.root_chord and f.x_root < g.x_root + g.root_chord]
-    taken = np.concatenate([angles(g) for g in near]) if near else np.zeros(0)
+    taken = np.concatenate([g.fin_angles() for g in near]) if near else np.zeros(0)
     for roll in np.pi / 4 + np.pi / 2 * np.arange(4 if f.count == 1 else 2):
-        mine = angles(replace(f, roll=roll))
-        gap = np.abs((mine[:, None] - taken[None, :] + np.pi) % (2 * np.pi) - np.pi)
+        gap = _angle_gaps(replace(f, roll=roll).fin_angles(), taken)
         if not gap.size or gap.min() > 1e-6:
             return replace(f, roll=float(roll))
     return f
+
+
+def _angle_gaps(a, b) -> np.ndarray:
+    """|a_i - b_j| [rad] wrapped to [0, pi], (len(a), len(b))."""
+    return np.abs((np.asarray(a)[:, None] - np.asarray(b)[None, :] + np.pi) % (2 * np.pi) - np.pi)
 
 
 def _common_roll_offset(fin_sets) -> float:
@@ -221,12 +222,9 @@ def is_symmetric(geom: RocketGeometry) -> bool:
     themselves under phi -> -phi) and no fin lies in that plane (a fin there would be cut
     in half; such layouts, e.g. four fins rolled 0 deg, are meshed whole)."""
     for f in geom.fins:
-        n = int(f.count)
-        phi = (f.roll + 2 * np.pi * np.arange(n) / n) % (2 * np.pi)
+        phi = f.fin_angles()
         if np.any(np.abs(np.sin(phi)) < 1e-9):
             return False
-        mirrored = (-phi) % (2 * np.pi)
-        gap = np.abs((mirrored[:, None] - phi[None, :] + np.pi) % (2 * np.pi) - np.pi)
-        if not np.all(gap.min(axis=1) < 1e-9):
+        if not np.all(_angle_gaps(-phi, phi).min(axis=1) < 1e-9):
             return False
     return True

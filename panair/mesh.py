@@ -184,6 +184,10 @@ class FinGeometry:
             return self.root_chord + fraction * (self.tip_chord - self.root_chord)
         return np.interp(fraction, self.outline[0], self.outline[2])
 
+    def fin_angles(self) -> np.ndarray:
+        """Roll angle [rad] of each fin, from +z toward +y, in [0, 2 pi)."""
+        return (self.roll + 2 * np.pi * np.arange(int(self.count)) / int(self.count)) % (2 * np.pi)
+
     def le_at(self, fraction):
         """Leading edge [m] aft of the root leading edge at span ``fraction``."""
         if self.outline is None:

@@ -113,7 +113,7 @@ def roll_offsets(geom) -> list[float]:
     counts = [int(f.count) for f in geom.fins]
     if not counts or math.gcd(*counts) >= 3:
         return [0.0]
-    angles = np.concatenate([(f.roll + 2 * np.pi * np.arange(f.count) / f.count) for f in geom.fins])
+    angles = np.concatenate([f.fin_angles() for f in geom.fins])
     # a mirror line of a layout passes through a fin or halfway between two fins
     candidates = [0.0] + sorted({round((-0.5 * (a + b) + k * np.pi / 2) % (2 * np.pi), 12)
                                  for a in angles for b in angles for k in range(2)})

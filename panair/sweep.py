@@ -215,7 +215,7 @@ def _solve_one(args):
     for i, a in enumerate(alphas):
         try:
             r = solver.solve(a)[0]
-            if i == 0 and mach < MACH_SUPERSONIC_MIN:
+            if i == 0:
                 cp_min = body_cp_min(r)
         except SolverError:
             if not rows or abs(_jorgensen_potential(alphas[i - 1])) < 1e-12:

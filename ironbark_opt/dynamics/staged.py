@@ -164,9 +164,9 @@ class StagedFlightModel:
         e = ca.vertcat(d, 0, 0)
         self.separate = ca.Function("separate", [xs, ts, ps], [ca.vertcat(
             xs[0:3] + rotation_matrix(xs[6:10]) @ e, xs[3:6] + ca.cross(xs[10:13], e), xs[6:13])])
-        self._traj = {"sustainer_boost": phase_trajectory(self._step["sustainer_boost"], self.n_sboost, "traj_sb"),
-                      "coast": phase_trajectory(self._step["coast"], self.n_scoast, "traj_sc"),
-                      "stack_coast": phase_trajectory(self._step["stack_coast"], self.n_stack_coast, "traj_stc")}
+        self._traj = {"stack_coast": phase_trajectory(self._step["stack_coast"], self.n_stack_coast, "traj_stc")}
+        self._set_sustainer_steps("sustainer_boost", self.n_sboost)
+        self._set_sustainer_steps("coast", self.n_scoast)
         self._choose_sustainer_grid(setup.nominal_parameters())
 
     def _choose_sustainer_grid(self, p) -> None:
@@ -200,13 +200,10 @@ class StagedFlightModel:
                 self._set_sustainer_steps("coast", 25 * int(math.ceil(n / 25)))
 
     def _set_sustainer_steps(self, phase: str, n: int) -> None:
-        if phase == "coast":
-            self.n_scoast = int(n)
-            self._traj["coast"] = phase_trajectory(self._step["coast"], self.n_scoast, "traj_sc")
-        else:
-            self.n_sboost = int(n)
-            self._traj["sustainer_boost"] = phase_trajectory(self._step["sustainer_boost"], self.n_sboost,
-                                                             "traj_sb")
+        """``n`` RK4 steps for the sustainer's ``phase`` ("sustainer_boost" or "coast")."""
+        setattr(self, "n_scoast" if phase == "coast" else "n_sboost", int(n))
+        self._traj[phase] = phase_trajectory(self._step[phase], int(n),
+                                             "traj_sc" if phase == "coast" else "traj_sb")
 
     def __getattr__(self, name):
         # anything of FlightSetup / FlightModel not built for staged rockets (ballast, AD, batches)
