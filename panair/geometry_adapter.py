@@ -14,6 +14,7 @@ from dataclasses import replace
 import numpy as np
 
 from ironbark_opt.errors import InputError
+from ironbark_opt.rocket.body import PINCH_FRACTION
 
 from .mesh import BodyGeometry, FinGeometry, RocketGeometry
 
@@ -167,9 +168,6 @@ def _common_roll_offset(fin_sets) -> float:
     return float(np.pi / ref.count - (np.pi / 2 - ref.roll_angle) % (2 * np.pi))
 
 
-#: An interior station narrower than this fraction of the largest radius, with the body
-#: widening again behind it, is a pinch the panel mesh cannot represent [-]
-PINCH_FRACTION = 0.02
 
 
 def _check_no_pinch(x, r):
@@ -188,7 +186,8 @@ def _check_no_pinch(x, r):
         raise InputError(
             f"the body narrows to a radius of {1e3 * r[i]:.3g} mm at x = {x[i]:.4g} m and widens "
             f"again behind it (largest radius {1e3 * r_max:.3g} mm): a panel mesh cannot represent "
-            "such a pinch (OpenRocket's 'base drag hack' transition is one); fly the empirical "
+            "such a pinch (an .ork file's 'base drag hack' transition with its mass or drag "
+            "override is left out by the reader; this one is the body's); fly the empirical "
             "aerodynamics (no --table), or model the base as a base", field="body")
 
 

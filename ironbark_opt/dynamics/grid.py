@@ -33,6 +33,22 @@ SPIN_LAMBDA_FACTOR = 2.0
 MAX_BOOST_DOUBLINGS = 6
 
 
+def doubled_until_finite(run, steps, set_steps, can_refine=lambda n: True):
+    """Final state of a provisional phase grid: ``run()`` flies the phase on the current
+    grid (states as columns), ``steps()`` is its step count and ``set_steps(n)`` imposes
+    ``n``; the steps are doubled (at most :data:`MAX_BOOST_DOUBLINGS` times, and only
+    while ``can_refine(n)``) while the final state is not finite.  Used for the boost of
+    a single stage (:meth:`GridMixin._finite_boost`) and for a sustainer's boost
+    (:meth:`ironbark_opt.dynamics.staged.StagedFlightModel._choose_sustainer_grid`)."""
+    x = None
+    for _ in range(MAX_BOOST_DOUBLINGS + 1):
+        x = np.array(run())[:, -1]
+        if np.all(np.isfinite(x)) or not can_refine(2 * steps()):
+            return x
+        set_steps(2 * steps())
+    return x
+
+
 class GridMixin:
     """RK4 grid of a :class:`~ironbark_opt.dynamics.model.FlightModel` (mixin)."""
 
@@ -59,13 +75,11 @@ class GridMixin:
         ``dt_boost`` allows (fins canted 1 deg on a 76 mm, 2 kg rocket: its roll rate, up
         to 198 rad/s, couples pitch and yaw at ~280 rad/s, over RK4's region at 0.02 s steps) made the
         whole state NaN first, and the flight was refused."""
-        for _ in range(MAX_BOOST_DOUBLINGS + 1):
-            x_b = np.array(self._run["boost"](x_r, t_r, t_b, self._with_boost_grid(p)))[:, -1]
-            if np.all(np.isfinite(x_b)) or not self._can_refine_boost(2 * self.n_boost):
-                return x_b
-            self.n_boost = 2 * self.n_boost
-            self._set_trajectory("boost", self.n_boost)
-        return x_b
+        def set_steps(n):
+            self.n_boost = n
+            self._set_trajectory("boost", n)
+        return doubled_until_finite(lambda: self._run["boost"](x_r, t_r, t_b, self._with_boost_grid(p)),
+                                    lambda: self.n_boost, set_steps, self._can_refine_boost)
 
     def _with_boost_grid(self, p):
         """``p`` for the current boost grid (the grid is in the trajectory Function here;

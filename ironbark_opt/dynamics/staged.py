@@ -177,17 +177,15 @@ class StagedFlightModel:
         symbolic flight share it.  Before (fixed 0.02 s boost steps and 400 coast steps
         over the coast), a light sustainer whose pitch mode is stiffer than that (2.3 kg,
         85 mm, Mach 1.4 at burnout: 6 coast steps to Mach 412) diverged and was refused."""
-        from ironbark_opt.dynamics.grid import MAX_BOOST_DOUBLINGS
+        from ironbark_opt.dynamics.grid import doubled_until_finite
         sep = self._to_separation(p)
         x_sep, _ = self._separate(sep["x"], sep["t_s"], p)
         t_s = sep["t_s"]
         t_b2 = float(self.setup.sustainer.motor.burn_time) * float(p[params.index("burn_time_scale")])
         stable = lambda phase, x, t: self.stack.stable_step(self.rhs[phase], x, t, p)
-        for _ in range(MAX_BOOST_DOUBLINGS + 1):
-            x_b = np.array(self._traj["sustainer_boost"](x_sep, t_s, t_b2, p))[:, -1]
-            if np.all(np.isfinite(x_b)):
-                break
-            self._set_sustainer_steps("sustainer_boost", 2 * self.n_sboost)
+        x_b = doubled_until_finite(lambda: self._traj["sustainer_boost"](x_sep, t_s, t_b2, p),
+                                   lambda: self.n_sboost,
+                                   lambda n: self._set_sustainer_steps("sustainer_boost", n))
         dt = min(stable("sustainer_boost", x_sep, t_s), stable("sustainer_boost", x_b, t_b2))
         if (t_b2 - t_s) / self.n_sboost > dt:
             self._set_sustainer_steps("sustainer_boost", int(math.ceil((t_b2 - t_s) / dt)))

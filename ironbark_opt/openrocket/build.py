@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -87,8 +88,13 @@ def cluster_motor_file(path: Path, motor, count: int) -> tuple[Path, str]:
 
 
 def geometry(doc: OrkDocument) -> Rocket:
-    """The Rocket (geometry; mass from :meth:`OrkDocument.dry_mass_properties`)."""
-    comps = [convert.body_component(c) for c in doc.rocket.body()]
+    """The Rocket (geometry; mass from :meth:`OrkDocument.dry_mass_properties`).
+
+    An OpenRocket 'base drag hack' transition (:meth:`OrkRocket.base_drag_hack`) is left
+    out (warned about when the file is read): the body ends at its real base, whose drag the base-drag models
+    give, and the stability is that of the real rocket."""
+    hack = doc.rocket.base_drag_hack()             # warned about when read (tree.py)
+    comps = [convert.body_component(c) for c in doc.rocket.body() if c is not hack]
     guide = None
     buttons = []                                    # (component, its buttons' stations [m])
     for c in doc.rocket.core_components():          # parallel boosters: openrocket.parallel

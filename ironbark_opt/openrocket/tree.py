@@ -52,6 +52,30 @@ class OrkRocket:
         """Body components in order from the nose tip."""
         return [c for s in self.stages for c in s.children if c.kind in oc.BODY]
 
+    def base_drag_hack(self):
+        """The body's last component if it is OpenRocket's 'base drag hack', else None.
+
+        The hack (OpenRocket's example 'Base drag hack (short-wide)', whose comment gives
+        the recipe) puts behind the flat base of a short rocket a transition starting from a
+        point (0.001 in) and widening back to full diameter over pi diameters, with
+        OpenRocket's mass, CG and drag overrides ticked, so that OpenRocket's Barrowman
+        centre of pressure moves aft.  It is not hardware.  Recognised by all of: a transition, last in the body, starting
+        narrower than :data:`~ironbark_opt.rocket.body.PINCH_FRACTION` of the largest body
+        radius and widening behind it, the component ahead ending at more than half that
+        radius (a step down to a point), and an OpenRocket mass or drag override on it (the
+        recipe).  Any other pinch stays the body's, and the panel mesh refuses it."""
+        from ironbark_opt.rocket.body import PINCH_FRACTION
+        body = self.body()
+        if len(body) < 2 or body[-1].kind != "transition":
+            return None
+        last, ahead = body[-1], body[-2]
+        r_max = max(outer_radius(c) for c in body)
+        g, ga = last.geo, ahead.geo
+        r_ahead = ga["radius"] if ahead.kind == "bodytube" else ga["aft_radius"]
+        pinched = g["fore_radius"] < PINCH_FRACTION * r_max and g["aft_radius"] > 0.5 * r_max
+        recipe = last.override_cd is not None or last.override_mass is not None
+        return last if pinched and r_ahead > 0.5 * r_max and recipe else None
+
     def length(self) -> float:
         """Nose tip to the aft end of the last body component [m]."""
         body = self.body()
@@ -357,9 +381,18 @@ def _warn_cd_overrides(ork: OrkRocket) -> None:
     """Warn, naming each component, that OpenRocket's drag-coefficient overrides
     (``<overridecd>``, written only when set) are not flown: Ironbark-Opt's drag comes
     from the geometry (empirical or panel tables), so a Cd override (e.g. the 'base drag
-    hack' Cd 0) would otherwise be dropped without a word."""
+    hack' Cd 0) would otherwise be dropped without a word; and that a 'base drag hack'
+    transition is left out (:meth:`OrkRocket.base_drag_hack`)."""
+    hack = ork.base_drag_hack()               # build.geometry leaves it out
+    if hack is not None:
+        warnings.warn(
+            f"'{hack.name}' ({hack.element.path}) is OpenRocket's 'base drag hack' (a transition "
+            f"from a {1e3 * hack.geo['fore_radius']:.3g} mm point behind the base, with OpenRocket's "
+            "mass/drag overrides), not hardware: left out of the aerodynamics; the rocket flies "
+            "with its real flat base (base drag from the base-drag model, stability without the "
+            "hack's extra lift aft)", UserWarning, stacklevel=3)
     for c in ork.components():
-        if c.override_cd is not None:
+        if c.override_cd is not None and c is not hack:
             warnings.warn(f"'{c.name}' ({c.element.path}): OpenRocket's drag coefficient "
                           f"override Cd = {c.override_cd:g} is not applied; its drag is computed "
                           f"from the geometry", UserWarning, stacklevel=3)

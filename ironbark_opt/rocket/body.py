@@ -10,6 +10,12 @@ from ironbark_opt import validate as v
 from ironbark_opt.rocket.revolution import BodyOfRevolution
 from ironbark_opt.rocket.shapes import canonical_shape, shape_radius
 
+#: An interior station of the body narrower than this fraction of its largest radius, with
+#: the body widening again behind it, is a pinch: no flow model here represents it (the panel
+#: mesh refuses it, :func:`panair.geometry_adapter._check_no_pinch`; an OpenRocket 'base drag
+#: hack' transition starts from one, :meth:`ironbark_opt.openrocket.tree.OrkRocket.base_drag_hack`) [-]
+PINCH_FRACTION = 0.02
+
 
 @dataclass(frozen=True, kw_only=True)
 class BodyTube(BodyOfRevolution):

@@ -401,14 +401,17 @@ def test_unverifiable_rse_motor_is_warned_about(monkeypatch, tmp_path):
     assert hit.motor.total_impulse > 1.3 * rse_impulse
 
 
-def test_cd_override_is_named_not_dropped_silently():
+def test_cd_override_is_named_not_dropped_silently(tmp_path):
     """OpenRocket's Cd override is not flown (drag from the geometry): each overridden
-    component is named in a warning ('Base drag hack (short-wide).ork' overrides one to
-    Cd 0); a file without overrides reads without one."""
-    with pytest.warns(UserWarning, match=r"drag coefficient override Cd = 0 is not applied") as rec:
-        read_ork(DATA / "Base drag hack (short-wide).ork")
+    component is named in a warning (here the simple rocket's nose cone, overridden to
+    Cd 0.42); a file without overrides reads without one."""
+    text = _xml("A simple model rocket.ork")
+    i = text.index("<nosecone>")
+    text = text[:i] + text[i:].replace("</name>", "</name><overridecd>0.42</overridecd>", 1)
+    with pytest.warns(UserWarning, match=r"drag coefficient override Cd = 0.42 is not applied") as rec:
+        read_ork(_write(tmp_path, text, "cd.ork"))
     said = [str(w.message) for w in rec if "override Cd" in str(w.message)]
-    assert len(said) == 1 and "subcomponents" in said[0]
+    assert len(said) == 1 and "nosecone" in said[0]
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         read_ork(SIMPLE)
