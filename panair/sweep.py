@@ -80,6 +80,21 @@ most ``CLIP_LOAD_MAX`` x the tolerated load, :mod:`panair.solver.supersonic`) ar
 to vacuum / stagnation and the solution kept; those Mach numbers are listed in
 ``mach_cp_clipped``.
 
+**No leading-edge suction on the fins.**  The fins' axial pressure force keeps its
+zero-incidence value at every angle of attack (:func:`_without_fin_suction`): a thin
+fin's pressure load at incidence acts normal to its plane, and the potential solution's
+forward "suction" force at the leading edge is not realised where the flow separates
+there, as it does at the sharp or small-radius edges of rocket fins (Polhamus, NASA TN
+D-3767, 1966: on sharp edges the potential-flow leading-edge suction is not obtained).
+The panels' near-field suction is also no measure of it: summed over the fins it tilts
+their force to the normal of the free stream or beyond (no induced drag at all; fins 5,
+10, 12 of Allen's tunnel models at Mach 0.6).  Measured on those models (Allen,
+NASA/TM-2001-210652; tests/validation/test_allen_finbody.py), CA(alpha 3-4 deg) -
+CA(0): tunnel -0.0055 ... -0.018 at Mach 0.6 / 0.9, the panel solution with the fins'
+suction -0.010 ... -0.053, without it -0.002 ... -0.005.  The body's increment (the
+nose's attached flow) is kept, as are the normal force and moment.  An external
+PANAIR's supersonic forces are its own (no panel pressures read back).
+
 Numeric-only.
 """
 from __future__ import annotations
@@ -208,24 +223,26 @@ def _solve_one(args):
 
     try:
         res = solver.solve(alphas)
-        return mach, np.array([[r.CA, r.CN, r.Cm] for r in res]), [], body_cp_min(res[0]), _linear_how(solver)
+        return (mach, _without_fin_suction(panels, res, sref, solver), [], body_cp_min(res[0]),
+                _linear_how(solver))
     except SolverError:
         pass
-    rows, cp_min = [], None
+    res, cp_min = [], None
     for i, a in enumerate(alphas):
         try:
             r = solver.solve(a)[0]
             if i == 0:
                 cp_min = body_cp_min(r)
         except SolverError:
-            if not rows or abs(_jorgensen_potential(alphas[i - 1])) < 1e-12:
+            if not res or abs(_jorgensen_potential(alphas[i - 1])) < 1e-12:
                 if mach < MACH_SUPERSONIC_MIN:
                     raise
                 # linear theory solves no lifting angle of this Mach number: all of it
                 # from local inclination (one method per Mach number, never mixed)
                 return _local_inclination(panels, mach, alphas, sref, lref, xref)
             break
-        rows.append([r.CA, r.CN, r.Cm])
+        res.append(r)
+    rows = [list(row) for row in _without_fin_suction(panels, res, sref, solver)]
     (ca0, cn0, cm0), g0 = rows[-1], _jorgensen_potential(alphas[len(rows) - 1])
     extra = [float(a) for a in alphas[len(rows):]]      # the first failure and all above it
     rows += [[ca0, cn0 * _jorgensen_potential(a) / g0, cm0 * _jorgensen_potential(a) / g0]
@@ -325,8 +342,35 @@ def _local_inclination(panels, mach, alphas, sref, lref, xref):
     """The fallback of a supersonic Mach number linear theory cannot solve
     (:mod:`panair.solver.local_inclination`)."""
     from .solver.local_inclination import LocalInclinationSolver
-    res = LocalInclinationSolver(panels, mach, sref=sref, lref=lref, xref=xref).solve(alphas)
-    return mach, np.array([[r.CA, r.CN, r.Cm] for r in res]), [], None, "local-inclination"
+    solver = LocalInclinationSolver(panels, mach, sref=sref, lref=lref, xref=xref)
+    res = solver.solve(alphas)
+    return mach, _without_fin_suction(panels, res, sref, solver), [], None, "local-inclination"
+
+
+def _fin_axial_force(panels, results, sref: float) -> np.ndarray:
+    """Axial pressure force coefficient [-] (on ``sref`` [m^2]) of the fin panels
+    (:meth:`PanelSet.fin_mask`, integrated ones) in each of ``results`` (their ``cp``
+    per panel; a panel a solver left out is NaN there and counts 0)."""
+    from .solver.pressure import integrate_forces
+    _, cen, nrm, area = panels.geometry()
+    nrm = panels.force_normals(nrm)
+    sel = panels.integrate & panels.fin_mask()
+    return np.array([integrate_forces(np.nan_to_num(np.asarray(r.cp, float)[sel]), cen[sel],
+                                      nrm[sel], area[sel], sref=sref, lref=1.0, xref=0.0,
+                                      symmetric=panels.symmetric)["CA"] for r in results])
+
+
+def _without_fin_suction(panels, results, sref: float, solver) -> np.ndarray:
+    """(n_alpha, 3) CA, CN, Cm of ``results``, the fins' axial pressure force held at its
+    zero-incidence value (module docstring: no leading-edge suction); ``solver`` solves
+    alpha = 0 when ``results`` do not start there."""
+    rows = np.array([[r.CA, r.CN, r.Cm] for r in results], float)
+    if not len(results):
+        return rows
+    ref = results[0] if abs(results[0].alpha) < 1e-12 else solver.solve(0.0)[0]
+    fin = _fin_axial_force(panels, list(results) + [ref], sref)
+    rows[:, 0] -= fin[:-1] - fin[-1]
+    return rows
 
 
 def _panair_one(nets, mach, alphas, sref, lref, xref, symmetric, workdir):
@@ -397,7 +441,7 @@ class _Checkpoint:
 
 
 #: bump when the solver's numbers change, so old checkpoints are not reused
-CHECKPOINT_VERSION = 6
+CHECKPOINT_VERSION = 7
 
 
 def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float,

@@ -103,9 +103,7 @@ class LocalInclinationSolver:
         _, self._cen, nrm, self._area = panels.geometry(1.0)
         self._nrm = nrm
         self._nrm_f = panels.force_normals(nrm)
-        names = np.array(panels.names)[panels.network]
-        self._fin = np.char.startswith(names.astype(str), "fin") | \
-            np.char.startswith(names.astype(str), "cap")
+        self._fin = panels.fin_mask()
         #: body panels parallel to the axis: no incidence pressure (see the module docstring)
         self._axial = ~self._fin & (np.abs(nrm[:, 0]) < 1e-6)
         self._cone, self._wedge = TangentCone(mach), TangentWedge(mach)

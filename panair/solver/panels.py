@@ -78,6 +78,12 @@ class PanelSet:
         out[~self.axial, 0] = 0.0
         return out
 
+    def fin_mask(self) -> np.ndarray:
+        """(n,) bool: panels of the fins' networks (``fin<k>`` surfaces and their
+        ``cap<k>`` tip caps, :func:`panair.mesh.mesh_rocket`)."""
+        names = np.array(self.names, dtype=str)[self.network]
+        return np.char.startswith(names, "fin") | np.char.startswith(names, "cap")
+
     @property
     def n(self) -> int:
         """Number of body panels (unknowns)."""

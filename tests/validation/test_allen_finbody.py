@@ -203,10 +203,15 @@ def _measured(fin):
 def _cn_points(fin, mach):
     """[(alpha0, CN0), (alpha1, CN1)] [deg, -] of data.csv at ``mach`` (alpha0 = 0 with CN
     = 0 where there is no alpha ~0 point, as derived.csv assumes)."""
+    pts = [(a, cn) for a, _, cn in _points(fin, mach)]
+    return pts if len(pts) > 1 else [(0.0, 0.0)] + pts
+
+
+def _points(fin, mach):
+    """[(alpha, CA, CN)] [deg, -, -] of data.csv at ``mach``, by angle."""
     rows = [ln.split(",") for ln in (DATA / fin / "data.csv").read_text().splitlines()
             if ln and ln[0].isdigit()]
-    pts = sorted((float(r[1]), float(r[3])) for r in rows if float(r[0]) == mach)
-    return pts if len(pts) > 1 else [(0.0, 0.0)] + pts
+    return sorted((float(r[1]), float(r[2]), float(r[3])) for r in rows if float(r[0]) == mach)
 
 
 def _angles(fin):
@@ -289,6 +294,24 @@ def test_allen_fin_body(fin, tmp_path):
             else:
                 assert abs(e_ca) < 0.55 and abs(e_cn) < 0.6 and abs(d_x) < 0.45
     print(f"{fin}: {sum(ok)} of {len(ok)} Mach numbers meet all three goals")
+    # the axial force's change with incidence, CA(alpha1) - CA(alpha0) (the tunnel's forebody
+    # CA at both measured angles; ours the table's pressure CA, friction and base do not
+    # change with alpha here): fins 5, 10 and 12 have both angles
+    for m in mach:
+        pts = _points(fin, m)
+        if len(pts) < 2:
+            continue
+        (a0, ca0_t, _), (a1, ca1_t, _) = pts[0], pts[-1]
+        d_t = ca1_t - ca0_t
+        d_o = float(t.evaluate("CA", m, math.radians(a1)) - t.evaluate("CA", m, math.radians(a0)))
+        print(f"{fin}: Mach {m}: CA({a1:.2f} deg) - CA({a0:.2f} deg) tunnel {d_t:+.4f}, ours {d_o:+.4f} "
+              f"({d_o - d_t:+.4f})")
+        # no leading-edge suction on the fins (panair.sweep), measured (session 21): Mach 0.6
+        # and 0.9 within -0.0018 ... +0.0135 of the tunnel (before, with the fins' panel
+        # suction: -0.0389 ... -0.0042, ours up to 7.5x the tunnel's change); Mach 1.2-3.95
+        # within -0.0096 ... +0.0102 (the tunnel's CA rises with alpha there, +0.003 ...
+        # +0.013: viscous, not modelled; ours -0.0046 ... +0.0044)
+        assert abs(d_o - d_t) < (0.015 if m < 1.0 else 0.013)
     print(f"{fin}: local-inclination Mach numbers (not bounded): {t.metadata['mach_local_inclination']}")
     w = np.max(np.array(worst), axis=0)
     # regression bounds at the Mach numbers linear theory solved: the measured state
