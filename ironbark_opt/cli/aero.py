@@ -274,15 +274,31 @@ def plot(table, out, as_json):
     for name in ("CA", "CN", "Cm"):
         if not t.has(name):
             raise InputError(f"table has no '{name}' coefficient", source=table, field=name)
+    fig = table_figure(t, Path(table).stem)
+    try:
+        atomic_write(out, lambda tmp: fig.savefig(tmp, dpi=120))
+    finally:
+        plt.close(fig)
+    emit({"image": str(out)}, as_json, f"wrote {out}")
+
+
+def table_figure(t, name: str):
+    """The 2 x 2 figure of ``aero plot``: CA vs Mach, CN and Cm vs alpha, CP position vs
+    Mach, of the AeroTable ``t`` titled ``name``."""
+    import matplotlib.pyplot as plt
     a_deg = np.degrees(t.alpha)
+    # one colour per curve, in the order of its angle / Mach number (the default cycle has
+    # 10 colours: a table's 13 angles and 15 Mach numbers would share them)
+    c_alpha = plt.get_cmap("viridis")(np.linspace(0.0, 0.92, len(a_deg)))
+    c_mach = plt.get_cmap("plasma")(np.linspace(0.0, 0.9, len(t.mach)))
     fig, ax = plt.subplots(2, 2, figsize=(11, 8))
     for j, a in enumerate(a_deg):
-        ax[0, 0].plot(t.mach, t.values("CA")[:, j], "o-", ms=3, label=f"{a:g} deg")
+        ax[0, 0].plot(t.mach, t.values("CA")[:, j], "o-", ms=3, color=c_alpha[j], label=f"{a:g} deg")
     ax[0, 0].set(xlabel="Mach [-]", ylabel="CA [-]", title="axial force")
     ax[0, 0].legend(fontsize=7, title="alpha")
     for i, m in enumerate(t.mach):
-        ax[0, 1].plot(a_deg, t.values("CN")[i], "o-", ms=3, label=f"M {m:g}")
-        ax[1, 0].plot(a_deg, t.values("Cm")[i], "o-", ms=3, label=f"M {m:g}")
+        ax[0, 1].plot(a_deg, t.values("CN")[i], "o-", ms=3, color=c_mach[i], label=f"M {m:g}")
+        ax[1, 0].plot(a_deg, t.values("Cm")[i], "o-", ms=3, color=c_mach[i], label=f"M {m:g}")
     ax[0, 1].set(xlabel="alpha [deg]", ylabel="CN [-]", title="normal force")
     ax[0, 1].legend(fontsize=7)
     ax[1, 0].set(xlabel="alpha [deg]", ylabel=f"Cm [-] about x = {t.moment_reference_x:g} m",
@@ -293,13 +309,12 @@ def plot(table, out, as_json):
                    np.nan)
     for j, a in enumerate(a_deg):
         if a > 0:
-            ax[1, 1].plot(t.mach, xcp[:, j], "o-", ms=3, label=f"{a:g} deg")
+            ax[1, 1].plot(t.mach, xcp[:, j], "o-", ms=3, color=c_alpha[j], label=f"{a:g} deg")
     ax[1, 1].set(xlabel="Mach [-]", ylabel="x_cp [m aft of nose tip]", title="centre of pressure")
     ax[1, 1].legend(fontsize=7, title="alpha")
-    fig.suptitle(f"{Path(table).stem}: includes {', '.join(t.includes)}")
+    fig.suptitle(f"{name}: includes {', '.join(t.includes)}")
     fig.tight_layout()
-    atomic_write(out, lambda tmp: fig.savefig(tmp, dpi=120))
-    emit({"image": str(out)}, as_json, f"wrote {out}")
+    return fig
 
 
 COMMANDS = [aero_group]

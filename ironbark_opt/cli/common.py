@@ -247,6 +247,8 @@ def atmosphere_load_kwargs(atmosphere=None, atmosphere_time=None, forecast=None,
     if atmosphere_time is not None and atmosphere is None:
         raise click.UsageError("--atmosphere-time needs --atmosphere FILE")
     if atmosphere is None:
+        if forecast is None and (site is not None or time is not None):
+            raise click.UsageError("--site/--time need --forecast rap|gfs")
         return {}
     if site is not None or time is not None:
         raise click.UsageError("--site/--time belong to --forecast; for a file give --atmosphere-time")

@@ -372,6 +372,13 @@ case("ballast-executor-bad", ball_c + " --motor {CD}/Cesaroni_M1670.eng --execut
 case("ballast-executor-no-motor", ball_c + " --executor local", ["--executor"])
 case("ballast-objective-bad", ball_c + " --objective cheapest", ["--objective"])
 case("ballast-forecast-no-time", ball_c + " --forecast rap", ["--time"])
+# --site/--time without --forecast were ignored by simulate, sensitivity and montecarlo (ballast
+# refused them): `simulate --site euroc --kml F` drew the file's site, not EuRoC's
+case("simulate-site-without-forecast", sim_c + " --site euroc --kml {T}/f.kml", ["--site", "--forecast"],
+     outputs=["f.kml"])
+case("sensitivity-time-without-forecast", "sensitivity {C} --time 2025-06-20T15:00Z", ["--time", "--forecast"])
+case("mc-site-without-forecast", "montecarlo {C} --spec {CD}/dispersions.toml --no-progress --samples 10"
+     " --site euroc", ["--site", "--forecast"])
 case("ballast-motor-missing-path", ball_c + " --motor nope.eng", ["nope.eng", "not found"])
 case("ballast-motor-missing-dir-path", ball_c + " --motor {T}/motors/nope.eng", ["nope.eng", "not found"])
 case("ballast-motor-empty-dir", ball_c + " --motor {T}/emptydir", ["emptydir", "no motor files"],
