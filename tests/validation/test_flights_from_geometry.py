@@ -91,7 +91,8 @@ def test_five_flights_on_tables_from_geometry(flights):
     # -6.01, +4.52, -0.65 %; session 16, McCoy's transonic drag of ogival noses in place of
     # their share of the sonic anchor (panair.transonic item 4): -0.10, +8.33, -2.22, -4.46,
     # +1.28 %; session 17, subsonic fins 12 x 20 instead of 6 x 30: -0.09, +8.37, -2.22,
-    # -4.45, +1.29 %);
+    # -4.45, +1.29 %; session 21, no leading-edge suction on the fins: -0.10, +8.26, -2.22,
+    # -4.46, +1.33 %);
     # a regression beyond it fails
     assert med <= 3.0 and worst <= 10.0
 

@@ -33,6 +33,9 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
 - Session 20, a set of one or two fins meshed at 45 deg, its roll average (FT1/FT2's
   two-fin camera housings were in the pitch plane, no lift): FT1 -2.08 -> -2.15 %, FT2
   +0.77 -> +0.51 %, APEX +6.25 % unchanged.
+- Session 21, no leading-edge suction on the fins (panair.sweep: the fins' axial force at
+  incidence held at its zero-incidence value): FT1 -2.15 -> -2.18 %, FT2 +0.51 -> +0.41 %,
+  APEX +6.25 % unchanged.
 
 Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
 FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).
