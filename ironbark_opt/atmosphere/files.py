@@ -15,17 +15,52 @@ to fly, whatever the file is:
   profile table (:meth:`Profile.from_dataframe`); any other ``.csv``/text:
   a saved University of Wyoming sounding (:mod:`.sounding`).
 
+A profile that says where it was taken (``latitude_deg``, ``longitude_deg``: forecasts,
+soundings) farther than :data:`PROFILE_SITE_WARN_KM` from the launch site is flown with a
+warning naming the distance (a reanalysis file is read at the site itself).
+
 Numeric-only (file I/O); the returned ``Profile`` is symbolic-safe.
 """
 from __future__ import annotations
 
 import json
+import math
+import warnings
 from datetime import datetime
 from pathlib import Path
 
 from ironbark_opt.errors import InputError
 
 _NETCDF = (".nc", ".nc4", ".netcdf", ".cdf")
+#: A one-column profile taken farther than this from the launch site is warned about [km]:
+#: beyond the distance from any site to its nearest radiosonde station in a network of
+#: stations about 400 km apart (the U.S. upper-air network)
+PROFILE_SITE_WARN_KM = 300.0
+#: Mean Earth radius [km] (IUGG, Moritz 2000: R1 = 6371.0088 km)
+EARTH_RADIUS_KM = 6371.0088
+
+
+def site_distance_km(lat1_deg, lon1_deg, lat2_deg, lon2_deg) -> float:
+    """Great-circle distance [km] between two points [deg] (haversine, spherical Earth)."""
+    p1, p2 = math.radians(lat1_deg), math.radians(lat2_deg)
+    dp, dl = p2 - p1, math.radians(lon2_deg - lon1_deg)
+    h = math.sin(dp / 2) ** 2 + math.cos(p1) * math.cos(p2) * math.sin(dl / 2) ** 2
+    return 2.0 * EARTH_RADIUS_KM * math.asin(min(1.0, math.sqrt(h)))
+
+
+def _warn_if_far(profile, latitude, longitude, path: Path) -> None:
+    """Warn when ``profile`` was taken farther than :data:`PROFILE_SITE_WARN_KM` from the
+    site at ``latitude``, ``longitude`` [rad] (both known)."""
+    lat0, lon0 = getattr(profile, "latitude_deg", None), getattr(profile, "longitude_deg", None)
+    if None in (lat0, lon0, latitude, longitude):
+        return
+    lat, lon = math.degrees(latitude), math.degrees(longitude)
+    d = site_distance_km(float(lat0), float(lon0), lat, lon)
+    if d > PROFILE_SITE_WARN_KM:
+        warnings.warn(f"{path}: this atmosphere profile was taken at {float(lat0):.4f}, "
+                      f"{float(lon0):.4f} deg, {d:.0f} km from the launch site ({lat:.4f}, "
+                      f"{lon:.4f} deg): its winds and temperatures are another place's",
+                      UserWarning, stacklevel=3)
 
 
 def _as_time(time, path) -> datetime | None:
@@ -129,9 +164,9 @@ def load_atmosphere_file(path, *, time=None, latitude: float | None = None,
     if when is not None:
         raise InputError("a time only selects a record of a reanalysis (.nc) file; this file "
                          "holds one profile", source=path, field="time")
-    if suffix == ".json":
-        return _json(path)
-    return _csv(path)
+    profile = _json(path) if suffix == ".json" else _csv(path)
+    _warn_if_far(profile, latitude, longitude, path)
+    return profile
 
 
 def describe_flown(atmosphere) -> dict:

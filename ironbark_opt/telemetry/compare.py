@@ -60,9 +60,11 @@ class FlightComparison:
 
     def summary(self) -> str:
         e = self.errors
+        # both apogee times after liftoff (the log's own clock is the simulation's + shift)
         lines = [f"Flight comparison: {self.rocket} vs {self.log}",
                  f"  apogee      simulated {e['simulated_apogee_agl_m']:9.1f} m at {e['simulated_apogee_time_s']:6.2f} s"
-                 f",  logged {e['logged_apogee_agl_m']:9.1f} m at {e['logged_apogee_time_s']:6.2f} s",
+                 f",  logged {e['logged_apogee_agl_m']:9.1f} m at {e['logged_apogee_time_s']:6.2f} s"
+                 " after liftoff",
                  f"  error       {e['apogee_error_m']:+9.1f} m ({100 * e['apogee_error_m'] / e['logged_apogee_agl_m']:+.2f} %),"
                  f" time {e['apogee_time_error_s']:+.2f} s"]
         for key in ("burnout_time_error_s", "max_speed_error_mps"):
