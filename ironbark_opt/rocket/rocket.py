@@ -73,6 +73,12 @@ class Rocket:
                 raise InputError(f"fin set '{fins.name}' root leading edge x = {fins.x} m is "
                                  f"off the body (0 to {self.length():.6g} m)",
                                  field=f"components[{self._index(fins)}].x")
+        for tube in (c for c in self.components if isinstance(c, InnerTube)):
+            if tube.outer_radius > self.max_radius() + JOINT_TOLERANCE:
+                raise InputError(f"inner tube '{tube.name}' (outer_radius {tube.outer_radius:.6g} m) "
+                                 f"does not fit inside the body (largest radius "
+                                 f"{self.max_radius():.6g} m)",
+                                 field=f"components[{self._index(tube)}].outer_radius")
         guides = [c for c in self.components if isinstance(c, (RailButtons, LaunchLug))]
         if len(guides) > 1:
             raise InputError("give one rail-button pair or one launch lug, not several",

@@ -27,6 +27,10 @@ from ironbark_opt.rocket.specs import (GRAIN_KEYS, MOTOR_OVERRIDE_KEYS, AeroSpec
 
 #: largest magnitude accepted for any number (guards overflow in the mass sums)
 MAX_MAGNITUDE = 1e9
+#: longest ``[[stage]] separation_delay`` [s]: the stack's coast is integrated in
+#: boost-sized RK4 steps (1e6 s hung the flight); 600 s of coast is past the apogee
+#: of any vehicle below ~5.9 km/s at burnout (t = v/g)
+MAX_SEPARATION_DELAY = 600.0
 
 TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart",
             "stage")
@@ -314,8 +318,9 @@ def _read_stages(rd: _Reader, items) -> tuple:
         if file.resolve() == rd.path.resolve():
             raise rd.error("a stage cannot be the file itself", "stage", "file", i, field=f"{label}.file")
         delay = rd.number(d, "separation_delay", "stage", i, label, default=0.0)
-        if delay < 0:
-            raise rd.error(f"must be >= 0 s after the stage's burnout, got {delay}", "stage",
+        if not 0 <= delay <= MAX_SEPARATION_DELAY:
+            raise rd.error(f"must be 0 .. {MAX_SEPARATION_DELAY:g} s after the stage's burnout "
+                           f"(a stack coasting longer is past its apogee), got {delay}", "stage",
                            "separation_delay", i, field=f"{label}.separation_delay")
         name = d.get("name", "")
         if not isinstance(name, str):
@@ -658,9 +663,18 @@ def _read_launch(rd: _Reader, d):
         else:
             kw[key] = val
     try:
-        return LaunchSpec(**kw)
+        spec = LaunchSpec(**kw)
     except InputError as exc:
         raise rd.wrap(exc, "launch", 0, "launch", d) from None
+    from ironbark_opt.atmosphere.isa import ISA
+    try:                     # the ISA the flight builds from the site values
+        ISA.from_site(spec.site_elevation, spec.site_temperature, spec.site_pressure)
+    except InputError as exc:
+        key = {"temperature": "site_temperature", "temperature_offset": "site_temperature",
+               "pressure": "site_pressure", "pressure_offset": "site_pressure"}.get(exc.field,
+                                                                                  "site_elevation")
+        raise rd.error(exc.message, "launch", key) from None
+    return spec
 
 
 def _read_atmosphere(rd: _Reader, value):
@@ -704,11 +718,16 @@ def _read_recovery(rd: _Reader, items):
         else:
             cd = rd.number(d, "cd", "recovery", i, label, required=True)
             diam = rd.number(d, "diameter", "recovery", i, label, required=True)
+            for key, val in (("cd", cd), ("diameter", diam)):
+                if val <= 0:        # a negative diameter would square to a positive area
+                    raise rd.error(f"must be > 0, got {val}", "recovery", key, i, field=f"{label}.{key}")
             cd_area = cd * math.pi * diam * diam / 4.0
         deploy = d.get("deploy", "apogee")
         if not isinstance(deploy, str):
             deploy = rd.number(d, "deploy", "recovery", i, label)
         name = d.get("name", f"recovery {i + 1}")
+        if not isinstance(name, str):
+            raise rd.error(f"expected a string, got {name!r}", "recovery", "name", i, field=f"{label}.name")
         try:
             out.append(RecoverySpec(name=str(name), cd_area=cd_area, deploy=deploy,
                                     lag=rd.number(d, "lag", "recovery", i, label, default=0.0)))

@@ -1,0 +1,111 @@
+"""Typos a student team makes in a rocket TOML file are refused by name (file, line, key),
+not flown (found by a mutation fuzz of the example and fixture files)."""
+import math
+import shutil
+from pathlib import Path
+
+import pytest
+
+from ironbark_opt.errors import InputError
+from ironbark_opt.rocket import load_rocket_toml
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+
+
+def _variant(tmp_path, example, old, new):
+    """``example`` (e.g. "kestrel/kestrel.toml") with ``old`` replaced, beside copies of its
+    motor and data files; returns (path, text)."""
+    src = EXAMPLES / example
+    text = src.read_text()
+    assert old in text, old
+    text = text.replace(old, new, 1)
+    text = text.replace('table = "../../tables/Kestrel.csv"', "")     # not needed to load
+    for f in src.parent.iterdir():
+        if f.suffix in (".eng", ".csv", ".py"):
+            shutil.copy(f, tmp_path / f.name)
+    text = text.replace('"../calisto/', '"')
+    for name in ("Cesaroni_M1670.eng", "powerOffDragCurve.csv", "powerOnDragCurve.csv"):
+        shutil.copy(EXAMPLES / "calisto" / name, tmp_path / name)
+    path = tmp_path / src.name
+    path.write_text(text)
+    return path, text
+
+
+def _line_of(text, needle):
+    return next(i for i, line in enumerate(text.splitlines(), 1) if needle in line)
+
+
+@pytest.mark.parametrize("example, old, new, field, needle", [
+    # 0.5 m of bevel on a 0.26 m root chord flew (apogee 3353 -> 3390 m)
+    ("kestrel/kestrel.toml", "le_bevel = 0.020", "le_bevel = 0.5", "component[2].le_bevel", "le_bevel"),
+    # a motor mount wider than the airframe flew (apogee 3353 -> 1877 m)
+    ("kestrel/kestrel.toml", "outer_radius = 0.0400", "outer_radius = 0.0600", "component[4].outer_radius",
+     "outer_radius = 0.0600"),
+    # a negative parachute diameter squared to a positive area
+    ("kestrel/kestrel.toml", "diameter = 0.61", "diameter = -0.61", "recovery[0].diameter", "diameter = -0.61"),
+    ("kestrel/kestrel.toml", 'name = "drogue"', "name = 1.5", "recovery[0].name", "name = 1.5"),
+    # a 90 km site and a Celsius or kPa site value named 'elevation' / 'temperature_offset'
+    # / 'pressure_offset' without the file
+    ("calisto/calisto.toml", "site_elevation = 1400.0", "site_elevation = 90000.0", "launch.site_elevation",
+     "site_elevation"),
+    ("calisto/calisto.toml", "wind_speed = 0.0", "site_temperature = 25.0", "launch.site_temperature",
+     "site_temperature"),
+    ("calisto/calisto.toml", "wind_speed = 0.0", "site_pressure = 101.3", "launch.site_pressure",
+     "site_pressure"),
+    ("calisto/calisto.toml", "longitude_deg = -106.974998", "longitude_deg = -400.0", "launch.longitude_deg",
+     "longitude_deg"),
+    # brakes "5.4 s before ignition" flew (opened at burnout)
+    ("calisto_airbrakes/calisto_airbrakes.toml", "start = 5.4", "start = -5.4", "airbrakes.start", "start = -5.4"),
+])
+def test_typo_is_refused_by_name(tmp_path, example, old, new, field, needle):
+    path, text = _variant(tmp_path, example, old, new)
+    with pytest.raises(InputError) as err:
+        load_rocket_toml(path)
+    assert err.value.field == field
+    assert err.value.line == _line_of(text, needle)
+    assert err.value.source == str(path)
+    print(err.value)
+
+
+def test_bevels_shorter_than_the_fin_still_meet_at_a_short_tip(tmp_path):
+    """0.2 + 0.02 m of bevel fits the 0.26 m root chord (the bevels meet toward the 0.09 m tip)."""
+    path, _ = _variant(tmp_path, "kestrel/kestrel.toml", "le_bevel = 0.020", "le_bevel = 0.2")
+    fins = load_rocket_toml(path).rocket.fin_sets()[0]
+    assert fins.section.le_bevel == 0.2
+    # the longer bevel removes material: the fins are thinner than with the 0.020 m bevel
+    base = load_rocket_toml(EXAMPLES / "kestrel" / "kestrel.toml").rocket.fin_sets()[0]
+    assert fins.volume() < base.volume()
+
+
+def test_inner_tube_as_wide_as_the_body_fits(tmp_path):
+    """A coupler flush with the outer radius (0.0508 m) is accepted; 1 um of tolerance."""
+    path, _ = _variant(tmp_path, "kestrel/kestrel.toml", "outer_radius = 0.0400", "outer_radius = 0.0508")
+    assert load_rocket_toml(path).rocket.components[4].outer_radius == 0.0508
+
+
+def test_separation_delay_is_bounded(tmp_path):
+    """A 1e6 s separation delay hung `simulate` (1e8 RK4 steps of stack coast)."""
+    data = ROOT / "tests" / "data" / "staged_toml"
+    text = (data / "sustainer.toml").read_text()
+    for name in ("sustainer.toml", "booster.toml"):
+        shutil.copy(data / name, tmp_path / name)
+    (tmp_path / "motors").mkdir()
+    text = text.replace('"../ork/motors/', f'"{ROOT}/tests/data/ork/motors/')
+    bad = text.replace("separation_delay = 0.0", "separation_delay = 1e6")
+    path = tmp_path / "sustainer.toml"
+    path.write_text(bad)
+    (tmp_path / "booster.toml").write_text((data / "booster.toml").read_text()
+                                           .replace('"../ork/motors/', f'"{ROOT}/tests/data/ork/motors/'))
+    with pytest.raises(InputError) as err:
+        load_rocket_toml(path)
+    assert err.value.field == "stage[0].separation_delay"
+    assert err.value.line == _line_of(bad, "separation_delay")
+    path.write_text(text.replace("separation_delay = 0.0", "separation_delay = 600.0"))
+    assert load_rocket_toml(path).stages[0].separation_delay == 600.0
+
+
+def test_longitude_east_of_greenwich_in_0_360_is_accepted(tmp_path):
+    path, _ = _variant(tmp_path, "calisto/calisto.toml", "longitude_deg = -106.974998",
+                       "longitude_deg = 253.025002")
+    assert math.degrees(load_rocket_toml(path).launch.longitude) == pytest.approx(253.025002)
