@@ -111,12 +111,7 @@ def check_rocket_file(rf, rocket, motor, file_motor=None) -> None:
         check_inertia(I, source=src, field=pre + "inertia")
     # several motors (air-start, parallel boosters): their sum is not the first file's motor
     check_motor(motor, None if rf.motor.airstart else file_motor, rf.motor, length, source=src)
-    guides = rocket.rail_guides()
-    if guides is not None:
-        for name, x in zip(("x_fore", "x_aft"), guides):
-            if not 0.0 <= x <= length:
-                raise InputError(f"rail guide at {x:g} m is outside the body (0 to {length:.4g} m)",
-                                 source=src, field=name)
+    # rail guides and point masses off the body: Rocket() (component-indexed)
     b = rf.ballast
     for name in ("x_min", "x_max", "x"):
         x = getattr(b, name)

@@ -79,6 +79,19 @@ class Rocket:
                                  f"does not fit inside the body (largest radius "
                                  f"{self.max_radius():.6g} m)",
                                  field=f"components[{self._index(tube)}].outer_radius")
+        for i, comp in enumerate(self.components):    # items that sit on or in the body
+            if isinstance(comp, RailButtons):
+                stations = (("x_fore", comp.x_fore), ("x_aft", comp.x_aft))
+            elif isinstance(comp, LaunchLug):
+                stations = (("x", comp.x), ("length", comp.x + comp.length))
+            elif isinstance(comp, PointMass):
+                stations = (("x", comp.x),)
+            else:
+                continue
+            for key, x in stations:
+                if not -JOINT_TOLERANCE <= x <= self.length() + JOINT_TOLERANCE:
+                    raise InputError(f"'{comp.name}' at x = {x:g} m is off the body (0 to "
+                                     f"{self.length():.6g} m)", field=f"components[{i}].{key}")
         guides = [c for c in self.components if isinstance(c, (RailButtons, LaunchLug))]
         if len(guides) > 1:
             raise InputError("give one rail-button pair or one launch lug, not several",

@@ -555,16 +555,18 @@ def _read_motor(rd: _Reader, d):
             ov[key] = g
         elif key == "dry_inertia":
             if (not isinstance(val, list) or len(val) != 2 or
-                    not all(isinstance(q, (int, float)) and not isinstance(q, bool) and q >= 0
-                            for q in val)):
+                    not all(isinstance(q, (int, float)) and not isinstance(q, bool)
+                            and 0 <= q <= MAX_MAGNITUDE for q in val)):
                 raise rd.error(f"expected [I_transverse, I_axial] >= 0 [kg m^2], got {val!r}",
                                "motor.overrides", key)
             ov[key] = (float(val[0]), float(val[1]))
         else:
             num = rd.number(ov_in, key, "motor.overrides")
-            # dry_mass = 0: the casing is counted in the rocket's mass (docs/rocket-toml.md).
-            if (num < 0 if key == "dry_mass" else num <= 0) and key not in ("dry_cg", "propellant_cg"):
-                raise rd.error(f"must be {'>= 0' if key == 'dry_mass' else '> 0'}, got {num}",
+            # dry_mass = 0: the casing is counted in the rocket's mass (docs/rocket-toml.md);
+            # the CGs are measured forward of the nozzle exit: 0 is the exit itself
+            at_least_zero = key in ("dry_mass", "dry_cg", "propellant_cg")
+            if num < 0 if at_least_zero else num <= 0:
+                raise rd.error(f"must be {'>= 0' if at_least_zero else '> 0'}, got {num}",
                                "motor.overrides", key)
             ov[key] = num
     extra = _read_motor_kind(rd, d, ov)

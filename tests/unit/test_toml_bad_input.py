@@ -57,6 +57,15 @@ def _line_of(text, needle):
      "longitude_deg"),
     # brakes "5.4 s before ignition" flew (opened at burnout)
     ("calisto_airbrakes/calisto_airbrakes.toml", "start = 5.4", "start = -5.4", "airbrakes.start", "start = -5.4"),
+    # a point mass 9 m aft of a 2.4 m rocket was refused only as 'static margin' (flown with
+    # --allow-unstable); a rail button off the body was named 'x_aft' without the component
+    ("kestrel/kestrel.toml", "x = 1.05", "x = 9.05", "component[6].x", "x = 9.05"),
+    ("kestrel/kestrel.toml", "x_aft = 2.20", "x_aft = 9.20", "component[9].x_aft", "x_aft = 9.20"),
+    # [motor.overrides] errors were reported against the .eng file under a bare key
+    ("calisto/calisto.toml", "dry_inertia = [0.125, 0.002]", "dry_inertia = [0.125, inf]",
+     "motor.overrides.dry_inertia", "dry_inertia"),
+    ("calisto/calisto.toml", "propellant_cg = 0.397", "propellant_cg = -5.0", "motor.overrides.propellant_cg",
+     "propellant_cg"),
 ])
 def test_typo_is_refused_by_name(tmp_path, example, old, new, field, needle):
     path, text = _variant(tmp_path, example, old, new)
