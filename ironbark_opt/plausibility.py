@@ -175,6 +175,10 @@ def check_motor(motor, file_motor, spec, body_length: float, *, source=None) -> 
     if spec is not None and spec.nozzle_x > 1.1 * body_length:
         raise InputError(f"nozzle_x = {spec.nozzle_x:g} m is aft of the body's end ({body_length:.4g} m)",
                          source=source, field="motor.nozzle_x")
+    if spec is not None and length and spec.nozzle_x < float(length) - 1e-6:
+        raise InputError(f"nozzle_x = {spec.nozzle_x:g} m puts the front of the {float(length):.4g} m motor "
+                         f"{float(length) - spec.nozzle_x:.4g} m ahead of the nose tip (nozzle_x is the "
+                         f"nozzle exit, m aft of the nose tip)", source=source, field="motor.nozzle_x")
     for i, (extra, _) in enumerate(getattr(spec, "airstart", None) or ()):
         if extra.nozzle_x > 1.1 * body_length:
             raise InputError(f"nozzle_x = {extra.nozzle_x:g} m is aft of the body's end ({body_length:.4g} m)",

@@ -18,6 +18,14 @@ JOINT_TOLERANCE = 1e-6
 _COMPONENT_TYPES = (BodyOfRevolution, FinSet, RailButtons, LaunchLug, PointMass, InnerTube, TubeFins)
 
 
+def _share_a_fin_line(a: FinSet, b: FinSet) -> bool:
+    """True when a fin of set ``a`` and one of set ``b`` stand at the same roll angle."""
+    def angles(f):
+        return f.roll_angle + 2 * np.pi * np.arange(f.count) / f.count
+    gap = (angles(a)[:, None] - angles(b)[None, :] + np.pi) % (2 * np.pi) - np.pi
+    return bool(np.any(np.abs(gap) < 1e-6))
+
+
 class Rocket:
     """A rocket without motor and ballast (value object; all methods numeric-only).
 
@@ -73,6 +81,20 @@ class Rocket:
                 raise InputError(f"fin set '{fins.name}' root leading edge x = {fins.x} m is "
                                  f"off the body (0 to {self.length():.6g} m)",
                                  field=f"components[{self._index(fins)}].x")
+        fin_sets = self.fin_sets()
+        for fins in fin_sets:
+            front = fins.x + float(np.min(fins.planform_points()[:, 0]))
+            if front < -JOINT_TOLERANCE:
+                raise InputError(f"fin set '{fins.name}' reaches {-front:.4g} m ahead of the nose tip "
+                                 f"(a tip swept forward of x = 0)",
+                                 field=f"components[{self._index(fins)}].x")
+        for k, a in enumerate(fin_sets):
+            for b in fin_sets[k + 1:]:
+                if a.x < b.x_end and b.x < a.x_end and _share_a_fin_line(a, b):
+                    raise InputError(f"fin sets '{a.name}' and '{b.name}' overlap along the axis with "
+                                     f"fins at the same roll angle (one fin inside another: a "
+                                     f"duplicated [[component]]?); turn one set with roll_deg",
+                                     field=f"components[{self._index(b)}].x")
         for tube in (c for c in self.components if isinstance(c, InnerTube)):
             if tube.outer_radius > self.max_radius() + JOINT_TOLERANCE:
                 raise InputError(f"inner tube '{tube.name}' (outer_radius {tube.outer_radius:.6g} m) "

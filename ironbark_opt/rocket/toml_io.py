@@ -318,9 +318,10 @@ def _read_stages(rd: _Reader, items) -> tuple:
         if file.resolve() == rd.path.resolve():
             raise rd.error("a stage cannot be the file itself", "stage", "file", i, field=f"{label}.file")
         delay = rd.number(d, "separation_delay", "stage", i, label, default=0.0)
-        if not 0 <= delay <= MAX_SEPARATION_DELAY:
-            raise rd.error(f"must be 0 .. {MAX_SEPARATION_DELAY:g} s after the stage's burnout "
-                           f"(a stack coasting longer is past its apogee), got {delay}", "stage",
+        if delay < 0 or delay > MAX_SEPARATION_DELAY:
+            raise rd.error(f"must be >= 0 s after the stage's burnout, got {delay}" if delay < 0 else
+                           f"must be at most {MAX_SEPARATION_DELAY:g} s after the stage's burnout (a "
+                           f"stack coasting longer is past its apogee), got {delay}", "stage",
                            "separation_delay", i, field=f"{label}.separation_delay")
         name = d.get("name", "")
         if not isinstance(name, str):
@@ -477,6 +478,9 @@ def _read_component(rd: _Reader, d, i, prev):
                 raise rd.error("give sweep_length or sweep_angle_deg, not both", "component",
                                "sweep_angle_deg", i, field=f"{label}.sweep_angle_deg")
             ang = rd.number(d, "sweep_angle_deg", "component", i, label)
+            if not -90.0 < ang < 90.0:
+                raise rd.error(f"must be within +-90 deg (exclusive), got {ang}", "component",
+                               "sweep_angle_deg", i, field=f"{label}.sweep_angle_deg")
             kw["sweep_length"] = rd.number(d, "span", "component", i, label,
                                            required=True) * math.tan(math.radians(ang))
     cls = {"nose_cone": NoseCone, "body_tube": BodyTube, "transition": Transition,

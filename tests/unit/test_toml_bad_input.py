@@ -66,6 +66,11 @@ def _line_of(text, needle):
      "motor.overrides.dry_inertia", "dry_inertia"),
     ("calisto/calisto.toml", "propellant_cg = 0.397", "propellant_cg = -5.0", "motor.overrides.propellant_cg",
      "propellant_cg"),
+    # tan(90 deg) swept the tip 1.8e15 m aft; -6 m of sweep put the tip ahead of the nose
+    # (refused only as unstable; aero build: 'singular surface pressure', no file)
+    ("calisto/calisto.toml", "sweep_length = 0.060", "sweep_angle_deg = 90.0", "component[3].sweep_angle_deg",
+     "sweep_angle_deg"),
+    ("calisto/calisto.toml", "sweep_length = 0.060", "sweep_length = -6.3", "component[3].x", "x = 2.32756"),
 ])
 def test_typo_is_refused_by_name(tmp_path, example, old, new, field, needle):
     path, text = _variant(tmp_path, example, old, new)
@@ -118,3 +123,42 @@ def test_longitude_east_of_greenwich_in_0_360_is_accepted(tmp_path):
     path, _ = _variant(tmp_path, "calisto/calisto.toml", "longitude_deg = -106.974998",
                        "longitude_deg = 253.025002")
     assert math.degrees(load_rocket_toml(path).launch.longitude) == pytest.approx(253.025002)
+
+
+FIN_BLOCK = '''
+[[component]]
+type = "trapezoidal_fins"
+name = "second fins"
+count = 4
+x = 2.32756
+root_chord = 0.120
+tip_chord = 0.060
+span = 0.110
+sweep_length = 0.060
+thickness = 0.0112
+'''
+
+
+def test_duplicated_fin_set_is_refused_and_a_turned_one_accepted(tmp_path):
+    """A copy-pasted fin set (same x, same default 45 deg roll) flew with twice the fin
+    normal force (Calisto apogee 3292.3 -> 3290.4 m); turned by 45 deg it is 8 fins."""
+    path, text = _variant(tmp_path, "calisto/calisto.toml", "[motor]\n", FIN_BLOCK + "\n[motor]\n")
+    with pytest.raises(InputError) as err:
+        load_rocket_toml(path)
+    assert err.value.field == "component[5].x" and "roll_deg" in err.value.message
+    assert err.value.line == _line_of(text, 'name = "second fins"') + 2
+    path.write_text(text.replace('name = "second fins"', 'name = "second fins"\nroll_deg = 0.0'))
+    fins = load_rocket_toml(path).rocket.fin_sets()
+    assert [math.degrees(f.roll_angle) for f in fins] == pytest.approx([45.0, 0.0])
+
+
+def test_motor_sticking_out_of_the_nose_is_refused(tmp_path):
+    """nozzle_x = 0.2 m put Calisto's 0.757 m M1670 0.557 m ahead of the nose tip; it flew."""
+    from ironbark_opt.vehicle import setup_from_file
+    path, _ = _variant(tmp_path, "calisto/calisto.toml", "nozzle_x = 2.533", "nozzle_x = 0.2")
+    with pytest.raises(InputError) as err:
+        setup_from_file(load_rocket_toml(path))
+    assert err.value.field == "motor.nozzle_x" and err.value.source == str(path)
+    assert "0.557 m ahead of the nose tip" in err.value.message
+    path, _ = _variant(tmp_path, "calisto/calisto.toml", "nozzle_x = 2.533", "nozzle_x = 0.757")
+    assert setup_from_file(load_rocket_toml(path)) is not None      # flush with the tip: accepted
