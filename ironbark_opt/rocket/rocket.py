@@ -83,6 +83,11 @@ class Rocket:
                                  field=f"components[{self._index(fins)}].x")
         fin_sets = self.fin_sets()
         for fins in fin_sets:
+            girth = 2 * np.pi * float(self.radius_at(fins.x))
+            if fins.count * fins.thickness > girth:
+                raise InputError(f"{fins.count} fins of {fins.thickness:.4g} m do not fit around the "
+                                 f"body ({girth:.4g} m round at the root leading edge)",
+                                 field=f"components[{self._index(fins)}].count")
             front = fins.x + float(np.min(fins.planform_points()[:, 0]))
             if front < -JOINT_TOLERANCE:
                 raise InputError(f"fin set '{fins.name}' reaches {-front:.4g} m ahead of the nose tip "

@@ -71,6 +71,10 @@ def _line_of(text, needle):
     ("calisto/calisto.toml", "sweep_length = 0.060", "sweep_angle_deg = 90.0", "component[3].sweep_angle_deg",
      "sweep_angle_deg"),
     ("calisto/calisto.toml", "sweep_length = 0.060", "sweep_length = -6.3", "component[3].x", "x = 2.32756"),
+    # 100 fins of 11.2 mm (1.12 m) around Calisto's 0.40 m girth flew (3292.3 -> 3293.5 m);
+    # a 0.5 m thick fin on a 0.26 m root chord was refused only as 'unstable'
+    ("calisto/calisto.toml", "count = 4", "count = 100", "component[3].count", "count = 100"),
+    ("kestrel/kestrel.toml", "thickness = 0.0048", "thickness = 0.5", "component[2].thickness", "thickness = 0.5"),
 ])
 def test_typo_is_refused_by_name(tmp_path, example, old, new, field, needle):
     path, text = _variant(tmp_path, example, old, new)
@@ -162,3 +166,15 @@ def test_motor_sticking_out_of_the_nose_is_refused(tmp_path):
     assert "0.557 m ahead of the nose tip" in err.value.message
     path, _ = _variant(tmp_path, "calisto/calisto.toml", "nozzle_x = 2.533", "nozzle_x = 0.757")
     assert setup_from_file(load_rocket_toml(path)) is not None      # flush with the tip: accepted
+
+
+def test_negative_number_in_a_motor_header_is_refused_even_when_overridden(tmp_path):
+    """Calisto's [motor.overrides] replace the header's masses, so a header propellant mass
+    of -3.101 kg was never read: the file was accepted as well formed."""
+    path, _ = _variant(tmp_path, "calisto/calisto.toml", "nozzle_x", "nozzle_x")
+    eng = tmp_path / "Cesaroni_M1670.eng"
+    eng.write_text(eng.read_text().replace("3.101 5.231", "-3.101 5.231"))
+    from ironbark_opt.vehicle import setup_from_file
+    with pytest.raises(InputError) as err:
+        setup_from_file(load_rocket_toml(path))
+    assert err.value.source == str(eng) and err.value.line == 1 and err.value.field == "propellant_kg"
