@@ -111,12 +111,7 @@ def check_rocket_file(rf, rocket, motor, file_motor=None) -> None:
         check_inertia(I, source=src, field=pre + "inertia")
     # several motors (air-start, parallel boosters): their sum is not the first file's motor
     check_motor(motor, None if rf.motor.airstart else file_motor, rf.motor, length, source=src)
-    guides = rocket.rail_guides()
-    if guides is not None:
-        for name, x in zip(("x_fore", "x_aft"), guides):
-            if not 0.0 <= x <= length:
-                raise InputError(f"rail guide at {x:g} m is outside the body (0 to {length:.4g} m)",
-                                 source=src, field=name)
+    # rail guides and point masses off the body: Rocket() (component-indexed)
     b = rf.ballast
     for name in ("x_min", "x_max", "x"):
         x = getattr(b, name)
@@ -180,6 +175,10 @@ def check_motor(motor, file_motor, spec, body_length: float, *, source=None) -> 
     if spec is not None and spec.nozzle_x > 1.1 * body_length:
         raise InputError(f"nozzle_x = {spec.nozzle_x:g} m is aft of the body's end ({body_length:.4g} m)",
                          source=source, field="motor.nozzle_x")
+    if spec is not None and length and spec.nozzle_x < float(length) - 1e-6:
+        raise InputError(f"nozzle_x = {spec.nozzle_x:g} m puts the front of the {float(length):.4g} m motor "
+                         f"{float(length) - spec.nozzle_x:.4g} m ahead of the nose tip (nozzle_x is the "
+                         f"nozzle exit, m aft of the nose tip)", source=source, field="motor.nozzle_x")
     for i, (extra, _) in enumerate(getattr(spec, "airstart", None) or ()):
         if extra.nozzle_x > 1.1 * body_length:
             raise InputError(f"nozzle_x = {extra.nozzle_x:g} m is aft of the body's end ({body_length:.4g} m)",

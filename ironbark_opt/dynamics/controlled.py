@@ -37,6 +37,20 @@ def _state(model, x, t, p, deployment) -> dict:
             "deployment": float(deployment)}
 
 
+def _where(func, exc: BaseException | None = None):
+    """``(file, line)`` of a user's controller: the deepest line of its file in the
+    traceback of ``exc``, else its ``def`` line; ``(None, None)`` when not Python code."""
+    code = getattr(func, "__code__", None)
+    if code is None:
+        return None, None
+    line, tb = code.co_firstlineno, None if exc is None else exc.__traceback__
+    while tb is not None:
+        if tb.tb_frame.f_code.co_filename == code.co_filename:
+            line = tb.tb_lineno
+        tb = tb.tb_next
+    return code.co_filename, line
+
+
 def run_controlled(model, p, *, descent: bool = False) -> dict:
     """Fly ``model`` (a FlightModel whose setup has a controller) to apogee.
 
@@ -80,11 +94,14 @@ def run_controlled(model, p, *, descent: bool = False) -> dict:
         try:
             cmd = float(brakes.controller(t, state))
         except Exception as exc:                     # a user's code: report where it failed
+            src, line = _where(brakes.controller, exc)
             raise InputError(f"the air-brake controller raised {type(exc).__name__}: {exc} "
-                             f"(at t = {t:.3f} s)", field="airbrakes.controller") from None
+                             f"(at t = {t:.3f} s)", source=src, line=line,
+                             field="airbrakes.controller") from None
         if not math.isfinite(cmd):
+            src, line = _where(brakes.controller)
             raise InputError(f"the air-brake controller returned {cmd} at t = {t:.3f} s (expected a "
-                             "deployment in [0, 1])", field="airbrakes.controller")
+                             "deployment in [0, 1])", source=src, line=line, field="airbrakes.controller")
         commands.append((t, cmd))
         d = d + float(np.clip(min(max(cmd, 0.0), 1.0) - d, -max_change, max_change))
         p_k = p.copy()

@@ -22,13 +22,14 @@ class DescentMixin:
         Chutes without a deploy altitude open at apogee; the others add their
         Cd*S when the rocket descends through their altitude (dual deploy).
         Inflation lag is neglected.  No chute: one ballistic stage (the coast
-        equations continue, 6-DOF).
+        equations continue, 6-DOF); no chute at apogee (a single main at an
+        altitude): ballistic down to the first deploy altitude.
         """
         chutes = self.setup.parachutes
         if not chutes:
             return [(None, 0.0, "ballistic")]
         stages, cd = [], sum(c.cd_area for c in chutes if c.deploy_altitude is None)
-        stages.append((None, cd, "descent"))
+        stages.append((None, cd, "descent") if cd > 0 else (None, 0.0, "ballistic"))
         for alt in sorted({c.deploy_altitude for c in chutes if c.deploy_altitude is not None}, reverse=True):
             cd += sum(c.cd_area for c in chutes if c.deploy_altitude == alt)
             stages.append((alt, cd, f"descent_{len(stages) + 1}"))

@@ -204,6 +204,10 @@ def _header_fields(src, n, toks) -> dict:
     length = parse_number(toks[2], source=src, line=n, field="length_mm")
     mp = parse_number(toks[4], source=src, line=n, field="propellant_kg")
     mt = parse_number(toks[5], source=src, line=n, field="total_kg")
+    for field, val in (("diameter_mm", dia), ("length_mm", length), ("propellant_kg", mp)):
+        if val < 0 or (val == 0 and field != "propellant_kg"):   # read even when overridden
+            raise InputError(f"{field} must be {'>= 0' if field == 'propellant_kg' else '> 0'}, got {val:g}",
+                             source=src, line=n, field=field)
     if mt <= mp:
         raise InputError(f"total mass {mt} kg must exceed propellant mass {mp} kg",
                          source=src, line=n, field="total_kg")

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ironbark_opt.aero.airbrakes import DRAG_MEANINGS, TRIGGERS, BrakeSchedule, load_controller, read_brake_drag
+from ironbark_opt.aero.airbrakes import DRAG_MEANINGS, TRIGGER_UNITS, TRIGGERS, BrakeSchedule, load_controller, read_brake_drag
 from ironbark_opt.errors import InputError
 
 AIRBRAKE_KEYS = ("drag", "drag_is", "reference_area", "trigger", "start", "level", "rate", "ramp",
@@ -83,6 +83,10 @@ def read_airbrakes(rd, d) -> AirbrakeSpec:
     for key in need:
         if key not in kw:
             raise rd.error(f"missing required key '{key}' for trigger = '{trig}'", table)
+    # a time after ignition, an altitude above ground and a Mach number are never negative
+    if trig in ("time", "altitude", "mach") and (kw["start"] < 0 or (trig == "mach" and kw["start"] == 0)):
+        raise rd.error(f"must be {'> 0' if trig == 'mach' else '>= ' + '0 ' + TRIGGER_UNITS[trig]} for "
+                       f"trigger = '{trig}', got {kw['start']}", table, "start")
     try:
         spec = AirbrakeSpec(**kw)
         airbrake_schedule(spec)                  # reads the table: its errors point here

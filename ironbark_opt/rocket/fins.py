@@ -106,6 +106,22 @@ class FinSet(abc.ABC):
                      mass=v.optional(v.nonnegative, self.mass, "mass", "kg"),
                      roughness=v.optional(v.nonnegative, self.roughness, "surface_roughness", "m"))
 
+    def _check_section_fits(self) -> None:
+        """A fin thicker than it is long, or bevels of a double wedge longer together than
+        the fin's axial extent, cannot be made (a unit typo: mm for m); shorter bevels meet
+        toward a short tip chord by design."""
+        extent = float(np.ptp(self.planform_points()[:, 0]))
+        if self.thickness > extent:
+            raise InputError(f"thickness {self.thickness:.6g} m exceeds the fin's length from "
+                             f"leading to trailing edge ({extent:.6g} m)", field="thickness")
+        le, te = self.section.le_bevel, self.section.te_bevel
+        if le is None:
+            return
+        if le + te > extent * (1.0 + 1e-9):
+            raise InputError(f"le_bevel + te_bevel = {le + te:.6g} m is longer than the fin "
+                             f"itself ({extent:.6g} m from leading to trailing edge)",
+                             field="le_bevel")
+
     # -- planform (subclasses) ------------------------------------------------------------
     @abc.abstractmethod
     def planform_points(self, n: int = 64) -> np.ndarray:
@@ -237,6 +253,7 @@ class TrapezoidalFins(FinSet):
                      tip_chord=v.nonnegative(self.tip_chord, "tip_chord"),
                      span=v.positive(self.span, "span"),
                      sweep_length=v.number(self.sweep_length, "sweep_length"))
+        self._check_section_fits()
 
     def planform_points(self, n: int = 64) -> np.ndarray:
         s, cr, ct, xs = self.span, self.root_chord, self.tip_chord, self.sweep_length
@@ -273,6 +290,7 @@ class EllipticalFins(FinSet):
         self._check_common()
         v.set_fields(self, root_chord=v.positive(self.root_chord, "root_chord"),
                      span=v.positive(self.span, "span"))
+        self._check_section_fits()
 
     @property
     def tip_chord(self) -> float:
@@ -338,6 +356,7 @@ class FreeformFins(FinSet):
         if abs(_shoelace(pts)) <= 0.0:
             raise InputError("the fin outline has zero area", field="points")
         v.set_fields(self, points=tuple((float(a), float(b)) for a, b in pts))
+        self._check_section_fits()
 
     @property
     def _pts(self) -> np.ndarray:

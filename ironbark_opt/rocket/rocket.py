@@ -18,6 +18,14 @@ JOINT_TOLERANCE = 1e-6
 _COMPONENT_TYPES = (BodyOfRevolution, FinSet, RailButtons, LaunchLug, PointMass, InnerTube, TubeFins)
 
 
+def _share_a_fin_line(a: FinSet, b: FinSet) -> bool:
+    """True when a fin of set ``a`` and one of set ``b`` stand at the same roll angle."""
+    def angles(f):
+        return f.roll_angle + 2 * np.pi * np.arange(f.count) / f.count
+    gap = (angles(a)[:, None] - angles(b)[None, :] + np.pi) % (2 * np.pi) - np.pi
+    return bool(np.any(np.abs(gap) < 1e-6))
+
+
 class Rocket:
     """A rocket without motor and ballast (value object; all methods numeric-only).
 
@@ -73,6 +81,44 @@ class Rocket:
                 raise InputError(f"fin set '{fins.name}' root leading edge x = {fins.x} m is "
                                  f"off the body (0 to {self.length():.6g} m)",
                                  field=f"components[{self._index(fins)}].x")
+        fin_sets = self.fin_sets()
+        for fins in fin_sets:
+            girth = 2 * np.pi * float(self.radius_at(fins.x))
+            if fins.count * fins.thickness > girth:
+                raise InputError(f"{fins.count} fins of {fins.thickness:.4g} m do not fit around the "
+                                 f"body ({girth:.4g} m round at the root leading edge)",
+                                 field=f"components[{self._index(fins)}].count")
+            front = fins.x + float(np.min(fins.planform_points()[:, 0]))
+            if front < -JOINT_TOLERANCE:
+                raise InputError(f"fin set '{fins.name}' reaches {-front:.4g} m ahead of the nose tip "
+                                 f"(a tip swept forward of x = 0)",
+                                 field=f"components[{self._index(fins)}].x")
+        for k, a in enumerate(fin_sets):
+            for b in fin_sets[k + 1:]:
+                if a.x < b.x_end and b.x < a.x_end and _share_a_fin_line(a, b):
+                    raise InputError(f"fin sets '{a.name}' and '{b.name}' overlap along the axis with "
+                                     f"fins at the same roll angle (one fin inside another: a "
+                                     f"duplicated [[component]]?); turn one set with roll_deg",
+                                     field=f"components[{self._index(b)}].x")
+        for tube in (c for c in self.components if isinstance(c, InnerTube)):
+            if tube.outer_radius > self.max_radius() + JOINT_TOLERANCE:
+                raise InputError(f"inner tube '{tube.name}' (outer_radius {tube.outer_radius:.6g} m) "
+                                 f"does not fit inside the body (largest radius "
+                                 f"{self.max_radius():.6g} m)",
+                                 field=f"components[{self._index(tube)}].outer_radius")
+        for i, comp in enumerate(self.components):    # items that sit on or in the body
+            if isinstance(comp, RailButtons):
+                stations = (("x_fore", comp.x_fore), ("x_aft", comp.x_aft))
+            elif isinstance(comp, LaunchLug):
+                stations = (("x", comp.x), ("length", comp.x + comp.length))
+            elif isinstance(comp, PointMass):
+                stations = (("x", comp.x),)
+            else:
+                continue
+            for key, x in stations:
+                if not -JOINT_TOLERANCE <= x <= self.length() + JOINT_TOLERANCE:
+                    raise InputError(f"'{comp.name}' at x = {x:g} m is off the body (0 to "
+                                     f"{self.length():.6g} m)", field=f"components[{i}].{key}")
         guides = [c for c in self.components if isinstance(c, (RailButtons, LaunchLug))]
         if len(guides) > 1:
             raise InputError("give one rail-button pair or one launch lug, not several",

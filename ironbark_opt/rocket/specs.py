@@ -182,7 +182,11 @@ class LaunchSpec:
                                  field="latitude")
             s(self, "latitude", lat)
         if self.longitude is not None:
-            s(self, "longitude", v.number(self.longitude, "longitude"))
+            lon = v.number(self.longitude, "longitude")
+            if not -math.pi <= lon <= 2 * math.pi:
+                raise InputError(f"longitude must be within -180..360 deg, got {math.degrees(lon)}",
+                                 field="longitude")
+            s(self, "longitude", lon)
         s(self, "site_temperature", v.optional(v.positive, self.site_temperature,
                                                "site_temperature", "K"))
         s(self, "site_pressure", v.optional(v.positive, self.site_pressure,

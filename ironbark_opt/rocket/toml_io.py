@@ -27,6 +27,10 @@ from ironbark_opt.rocket.specs import (GRAIN_KEYS, MOTOR_OVERRIDE_KEYS, AeroSpec
 
 #: largest magnitude accepted for any number (guards overflow in the mass sums)
 MAX_MAGNITUDE = 1e9
+#: longest ``[[stage]] separation_delay`` [s]: the stack's coast is integrated in
+#: boost-sized RK4 steps (1e6 s hung the flight); 600 s of coast is past the apogee
+#: of any vehicle below ~5.9 km/s at burnout (t = v/g)
+MAX_SEPARATION_DELAY = 600.0
 
 TOP_KEYS = ("rocket", "component", "motor", "aero", "launch", "recovery", "ballast", "airbrakes", "airstart",
             "stage")
@@ -314,8 +318,10 @@ def _read_stages(rd: _Reader, items) -> tuple:
         if file.resolve() == rd.path.resolve():
             raise rd.error("a stage cannot be the file itself", "stage", "file", i, field=f"{label}.file")
         delay = rd.number(d, "separation_delay", "stage", i, label, default=0.0)
-        if delay < 0:
-            raise rd.error(f"must be >= 0 s after the stage's burnout, got {delay}", "stage",
+        if delay < 0 or delay > MAX_SEPARATION_DELAY:
+            raise rd.error(f"must be >= 0 s after the stage's burnout, got {delay}" if delay < 0 else
+                           f"must be at most {MAX_SEPARATION_DELAY:g} s after the stage's burnout (a "
+                           f"stack coasting longer is past its apogee), got {delay}", "stage",
                            "separation_delay", i, field=f"{label}.separation_delay")
         name = d.get("name", "")
         if not isinstance(name, str):
@@ -472,6 +478,9 @@ def _read_component(rd: _Reader, d, i, prev):
                 raise rd.error("give sweep_length or sweep_angle_deg, not both", "component",
                                "sweep_angle_deg", i, field=f"{label}.sweep_angle_deg")
             ang = rd.number(d, "sweep_angle_deg", "component", i, label)
+            if not -90.0 < ang < 90.0:
+                raise rd.error(f"must be within +-90 deg (exclusive), got {ang}", "component",
+                               "sweep_angle_deg", i, field=f"{label}.sweep_angle_deg")
             kw["sweep_length"] = rd.number(d, "span", "component", i, label,
                                            required=True) * math.tan(math.radians(ang))
     cls = {"nose_cone": NoseCone, "body_tube": BodyTube, "transition": Transition,
@@ -550,16 +559,18 @@ def _read_motor(rd: _Reader, d):
             ov[key] = g
         elif key == "dry_inertia":
             if (not isinstance(val, list) or len(val) != 2 or
-                    not all(isinstance(q, (int, float)) and not isinstance(q, bool) and q >= 0
-                            for q in val)):
+                    not all(isinstance(q, (int, float)) and not isinstance(q, bool)
+                            and 0 <= q <= MAX_MAGNITUDE for q in val)):
                 raise rd.error(f"expected [I_transverse, I_axial] >= 0 [kg m^2], got {val!r}",
                                "motor.overrides", key)
             ov[key] = (float(val[0]), float(val[1]))
         else:
             num = rd.number(ov_in, key, "motor.overrides")
-            # dry_mass = 0: the casing is counted in the rocket's mass (docs/rocket-toml.md).
-            if (num < 0 if key == "dry_mass" else num <= 0) and key not in ("dry_cg", "propellant_cg"):
-                raise rd.error(f"must be {'>= 0' if key == 'dry_mass' else '> 0'}, got {num}",
+            # dry_mass = 0: the casing is counted in the rocket's mass (docs/rocket-toml.md);
+            # the CGs are measured forward of the nozzle exit: 0 is the exit itself
+            at_least_zero = key in ("dry_mass", "dry_cg", "propellant_cg")
+            if num < 0 if at_least_zero else num <= 0:
+                raise rd.error(f"must be {'>= 0' if at_least_zero else '> 0'}, got {num}",
                                "motor.overrides", key)
             ov[key] = num
     extra = _read_motor_kind(rd, d, ov)
@@ -658,9 +669,18 @@ def _read_launch(rd: _Reader, d):
         else:
             kw[key] = val
     try:
-        return LaunchSpec(**kw)
+        spec = LaunchSpec(**kw)
     except InputError as exc:
         raise rd.wrap(exc, "launch", 0, "launch", d) from None
+    from ironbark_opt.atmosphere.isa import ISA
+    try:                     # the ISA the flight builds from the site values
+        ISA.from_site(spec.site_elevation, spec.site_temperature, spec.site_pressure)
+    except InputError as exc:
+        key = {"temperature": "site_temperature", "temperature_offset": "site_temperature",
+               "pressure": "site_pressure", "pressure_offset": "site_pressure"}.get(exc.field,
+                                                                                  "site_elevation")
+        raise rd.error(exc.message, "launch", key) from None
+    return spec
 
 
 def _read_atmosphere(rd: _Reader, value):
@@ -704,11 +724,16 @@ def _read_recovery(rd: _Reader, items):
         else:
             cd = rd.number(d, "cd", "recovery", i, label, required=True)
             diam = rd.number(d, "diameter", "recovery", i, label, required=True)
+            for key, val in (("cd", cd), ("diameter", diam)):
+                if val <= 0:        # a negative diameter would square to a positive area
+                    raise rd.error(f"must be > 0, got {val}", "recovery", key, i, field=f"{label}.{key}")
             cd_area = cd * math.pi * diam * diam / 4.0
         deploy = d.get("deploy", "apogee")
         if not isinstance(deploy, str):
             deploy = rd.number(d, "deploy", "recovery", i, label)
         name = d.get("name", f"recovery {i + 1}")
+        if not isinstance(name, str):
+            raise rd.error(f"expected a string, got {name!r}", "recovery", "name", i, field=f"{label}.name")
         try:
             out.append(RecoverySpec(name=str(name), cd_area=cd_area, deploy=deploy,
                                     lag=rd.number(d, "lag", "recovery", i, label, default=0.0)))

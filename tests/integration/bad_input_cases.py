@@ -891,3 +891,38 @@ case("b2-ballast-max-inf", "ballast {C} --target 3000m --max-ballast inf", ["--m
 case("b2-ballast-target-inf", "ballast {C} --target inf", ["target"])
 case("b2-sens-target-nan", "sensitivity {C} --target nanm", ["target"])
 case("b2-mc-target-inf", "montecarlo {C} --spec {CD}/dispersions.toml --target infm", ["target"])
+
+
+# --- found by a mutation fuzz of the example TOMLs (each flew, hung or named no file before)
+case("fuzz-ab-controller-raises", sim_c, ["ctl.py:3", "airbrakes.controller", "raised runtimeerror"],
+     edits=[_brakes(AB + 'trigger = "controller"\ncontroller = "ctl.py:ctl"\nsampling_rate = 10.0\nrate = 2.0'),
+            write("ex/c/ctl.py", "def ctl(time_s, state):\n    x = 1\n    raise RuntimeError('boom')\n")])
+case("fuzz-ab-controller-nan", sim_c, ["ctl.py:1", "airbrakes.controller", "returned nan"],
+     edits=[_brakes(AB + 'trigger = "controller"\ncontroller = "ctl.py:ctl"\nsampling_rate = 10.0\nrate = 2.0'),
+            write("ex/c/ctl.py", "def ctl(time_s, state):\n    return float('nan')\n")])
+case("fuzz-ab-start-negative", sim_c, ["calisto.toml", "airbrakes.start", ">= 0 s"],
+     edits=[_brakes(AB + 'trigger = "time"\nstart = -5.4\nrate = 2.0')])
+case("fuzz-fin-bevel-longer-than-fin", sim_k, ["kestrel.toml", "le_bevel", "longer than the fin"],
+     edits=[edit(KT, "le_bevel = 0.020", "le_bevel = 0.5")])
+case("fuzz-motor-mount-wider-than-body", sim_k, ["kestrel.toml", "outer_radius", "does not fit"],
+     edits=[edit(KT, "outer_radius = 0.0400", "outer_radius = 0.0600")])
+case("fuzz-point-mass-off-the-body", sim_k, ["kestrel.toml", "component[6].x", "off the body"],
+     edits=[edit(KT, "x = 1.05", "x = 9.05")])
+case("fuzz-recovery-negative-diameter", "simulate {K} --descent", ["kestrel.toml", "recovery[0].diameter"],
+     edits=[edit(KT, "diameter = 0.61", "diameter = -0.61")])
+case("fuzz-site-temperature-celsius", sim_c, ["calisto.toml", "launch.site_temperature", "kelvin"],
+     edits=[edit(CT, "wind_speed = 0.0", "site_temperature = 25.0")])
+case("fuzz-longitude-out-of-range", sim_c, ["calisto.toml", "launch.longitude_deg"],
+     edits=[edit(CT, "longitude_deg = -106.974998", "longitude_deg = -400.0")])
+case("fuzz-fin-set-duplicated", sim_c, ["calisto.toml:53", "component[4].x", "roll_deg"],
+     edits=[edit(CT, "[[component]]\ntype = \"rail_buttons\"",
+                 "[[component]]\ntype = \"trapezoidal_fins\"\nx = 2.32756\nroot_chord = 0.120\ntip_chord = 0.060\n"
+                 "span = 0.110\nsweep_length = 0.060\nthickness = 0.0112\n\n[[component]]\ntype = \"rail_buttons\"")])
+case("fuzz-fin-count-100", sim_c, ["calisto.toml", "component[3].count", "do not fit"],
+     edits=[edit(CT, "count = 4", "count = 100")])
+case("fuzz-sweep-angle-90", sim_c, ["calisto.toml", "sweep_angle_deg"],
+     edits=[edit(CT, "sweep_length = 0.060", "sweep_angle_deg = 90.0")])
+case("fuzz-motor-ahead-of-nose", sim_c, ["calisto.toml", "motor.nozzle_x", "ahead of the nose tip"],
+     edits=[edit(CT, "nozzle_x = 2.533", "nozzle_x = 0.2")])
+case("fuzz-eng-header-negative-propellant", sim_c, ["cesaroni_m1670.eng:1", "propellant_kg"],
+     edits=[edit(CE, "3.101 5.231", "-3.101 5.231")])

@@ -220,6 +220,9 @@ def test_ork_buttons_round_trip_through_the_toml_writer(tmp_path):
     from ironbark_opt.openrocket.build import geometry
     from ironbark_opt.rocket import Rocket, dump_rocket_toml
     rb = next(c for c in geometry(read_ork(FT1)).components if isinstance(c, RailButtons))
+    # moved 1 m forward onto Calisto's 2.53 m body (FT1's aft button is at 2.66 m)
+    rb = dataclasses.replace(rb, x_fore=rb.x_fore - 1.0, x_aft=rb.x_aft - 1.0,
+                             x_other=tuple(x - 1.0 for x in rb.x_other))
     f1 = load_rocket_toml(_calisto(tmp_path, ""))
     r1 = f1.rocket
     comps = [c for c in r1.components if not isinstance(c, RailButtons)] + [rb]
