@@ -1,6 +1,7 @@
 """The Rocket: an ordered set of components plus an optional mass override."""
 from __future__ import annotations
 
+import warnings
 from typing import Sequence
 
 import numpy as np
@@ -14,6 +15,10 @@ from ironbark_opt.rocket.revolution import BodyOfRevolution
 
 #: gap or overlap [m] tolerated between consecutive body components
 JOINT_TOLERANCE = 1e-6
+#: reference_radius / the largest body radius refused outside this range [-] (a unit slip:
+#: m for mm gives 1e-3, mm for m 1e3); above REFERENCE_WARN_RATIO it is warned about
+REFERENCE_RATIO = (0.1, 10.0)
+REFERENCE_WARN_RATIO = 1.5
 
 _COMPONENT_TYPES = (BodyOfRevolution, FinSet, RailButtons, LaunchLug, PointMass, InnerTube, TubeFins)
 
@@ -75,6 +80,15 @@ class Rocket:
                 raise InputError(f"reference_radius must be > 0 m, got {reference_radius!r}",
                                  field="reference_radius")
             reference_radius = float(reference_radius)
+            ratio = reference_radius / max(c.max_radius() for c in body)
+            if not REFERENCE_RATIO[0] <= ratio <= REFERENCE_RATIO[1]:
+                raise InputError(f"reference_radius {reference_radius:g} m is {ratio:.3g} x the largest "
+                                 f"body radius; expected about the body's radius (m, not mm)",
+                                 field="reference_radius")
+            if ratio > REFERENCE_WARN_RATIO:
+                warnings.warn(f"reference_radius {reference_radius:g} m is {ratio:.3g} x the largest "
+                              "body radius: a diameter given as the radius? (the coefficients of "
+                              "drag curves and tables are on this area)", UserWarning, stacklevel=2)
         self._reference_radius = reference_radius
         for fins in self.fin_sets():
             if fins.x < 0.0 or fins.x > self.length():

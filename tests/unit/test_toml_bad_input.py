@@ -75,6 +75,11 @@ def _line_of(text, needle):
     # a 0.5 m thick fin on a 0.26 m root chord was refused only as 'unstable'
     ("calisto/calisto.toml", "count = 4", "count = 100", "component[3].count", "count = 100"),
     ("kestrel/kestrel.toml", "thickness = 0.0048", "thickness = 0.5", "component[2].thickness", "thickness = 0.5"),
+    # a reference radius in mm (100x the body: exit 3 'never climbs' without naming it)
+    ("calisto/calisto.toml", "reference_radius = 0.0635", "reference_radius = 6.35", "rocket.reference_radius",
+     "reference_radius"),
+    ("calisto/calisto.toml", "reference_radius = 0.0635", "reference_radius = 0.000635", "rocket.reference_radius",
+     "reference_radius"),
 ])
 def test_typo_is_refused_by_name(tmp_path, example, old, new, field, needle):
     path, text = _variant(tmp_path, example, old, new)
@@ -178,3 +183,11 @@ def test_negative_number_in_a_motor_header_is_refused_even_when_overridden(tmp_p
     with pytest.raises(InputError) as err:
         setup_from_file(load_rocket_toml(path))
     assert err.value.source == str(eng) and err.value.line == 1 and err.value.field == "propellant_kg"
+
+
+def test_reference_diameter_for_radius_is_warned(tmp_path):
+    """Twice the body radius (a diameter typed as the radius) flies, with a warning."""
+    path, _ = _variant(tmp_path, "calisto/calisto.toml", "reference_radius = 0.0635", "reference_radius = 0.127")
+    with pytest.warns(UserWarning, match=r"2 x the largest body radius: a diameter"):
+        rocket = load_rocket_toml(path).rocket
+    assert rocket.reference_radius() == 0.127
