@@ -307,10 +307,14 @@ def fetch(source: str, url: str, *, params: dict | None = None, json_body: Any =
 
 
 def _env_hint(url: str) -> str:
-    for env, _ in ENDPOINTS.values():
-        if os.environ.get(env) and url.startswith(os.environ[env].rstrip("/")):
-            return env
-    return "the IRONBARK_*_URL variables"
+    """The environment variable(s) whose endpoint ``url`` is under: the longest matching
+    base; several variables set to that same base are all named."""
+    hits = [(len(os.environ[env].rstrip("/")), env) for env, _ in ENDPOINTS.values()
+            if os.environ.get(env) and url.startswith(os.environ[env].rstrip("/"))]
+    if not hits:
+        return "the IRONBARK_*_URL variables"
+    longest = max(n for n, _ in hits)
+    return " or ".join(env for n, env in hits if n == longest)
 
 
 def _short(err: Exception) -> str:
