@@ -307,14 +307,18 @@ def fetch(source: str, url: str, *, params: dict | None = None, json_body: Any =
 
 
 def _env_hint(url: str) -> str:
-    """The environment variable(s) whose endpoint ``url`` is under: the longest matching
-    base; several variables set to that same base are all named."""
+    """The environment variable whose endpoint ``url`` is under (the longest matching
+    base); when several variables point at that same base, which one failed is not known
+    here, so none is named."""
     hits = [(len(os.environ[env].rstrip("/")), env) for env, _ in ENDPOINTS.values()
             if os.environ.get(env) and url.startswith(os.environ[env].rstrip("/"))]
-    if not hits:
-        return "the IRONBARK_*_URL variables"
-    longest = max(n for n, _ in hits)
-    return " or ".join(env for n, env in hits if n == longest)
+    longest = max((n for n, _ in hits), default=None)
+    best = [env for n, env in hits if n == longest]
+    if len(best) == 1:
+        return best[0]
+    if best:
+        return f"the IRONBARK_*_URL variable of this source ({len(best)} point at this server)"
+    return "the IRONBARK_*_URL variables"
 
 
 def _short(err: Exception) -> str:

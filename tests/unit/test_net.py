@@ -41,13 +41,13 @@ def test_every_endpoint_has_an_env_variable():
 
 
 def test_failure_hint_names_the_endpoints_variable(cfg, monkeypatch):
-    """A failed request names the variable of the endpoint it went to: the longest
-    matching base; variables sharing that base all named (a THREDDS failure behind one
-    local mirror said 'set IRONBARK_THRUSTCURVE_URL', the first in the table)."""
+    """A failed request names the variable of the endpoint it went to (the longest
+    matching base); with several variables on that base none is named (a THREDDS failure
+    behind one local mirror said 'set IRONBARK_THRUSTCURVE_URL', the first in the table)."""
     monkeypatch.setenv("IRONBARK_THRUSTCURVE_URL", "http://127.0.0.1:9")
     monkeypatch.setenv("IRONBARK_THREDDS_URL", "http://127.0.0.1:9")
     assert net._env_hint("http://127.0.0.1:9/ncss/x") == \
-        "IRONBARK_THRUSTCURVE_URL or IRONBARK_THREDDS_URL"
+        "the IRONBARK_*_URL variable of this source (2 point at this server)"
     monkeypatch.setenv("IRONBARK_THREDDS_URL", "http://127.0.0.1:9/thredds")
     assert net._env_hint("http://127.0.0.1:9/thredds/ncss/x") == "IRONBARK_THREDDS_URL"
     assert net._env_hint("https://elsewhere.example/x") == "the IRONBARK_*_URL variables"
