@@ -172,6 +172,13 @@ class FlightLog:
         return "\n".join(lines)
 
 
+#: A log whose highest sample is its last is taken to end at apogee when its own vertical
+#: speed channel reads at most this there [m/s] (a simulation exported to apogee, e.g.
+#: ``ironbark simulate --csv F --csv-format openrocket`` without ``--descent``: 1 m/s is
+#: v^2 / 2g = 5 cm of climb left); without that channel it is refused as truncated
+APOGEE_END_SPEED = 1.0
+
+
 def detect_liftoff(t: np.ndarray, h: np.ndarray) -> float | None:
     """Liftoff time [s] from the early boost: zero of the line through sqrt(h)."""
     i_apo = int(np.argmax(h))
@@ -237,7 +244,8 @@ def build_log(source: str, fmt: str, device: str, t, h, *, v=None, a=None, event
     if not h[i_apo] - h[0] > 1.0:        # [m] a flight climbs; noise on the pad does not
         raise InputError(f"the altitude never rises more than 1 m above its first sample "
                          f"(max {h[i_apo]:.2f} m): no liftoff in this log", source=source, field="altitude")
-    if i_apo == t.size - 1:
+    if i_apo == t.size - 1 and not (v is not None and np.isfinite(v[-1])
+                                    and abs(float(v[-1])) <= APOGEE_END_SPEED):
         raise InputError("the log ends while the rocket is still climbing (truncated log?)", source=source,
                          line=None if line_numbers is None else int(np.max(line_numbers)))
     ev = {k: float(val) for k, val in (events or {}).items() if val is not None}

@@ -190,6 +190,30 @@ def test_openrocket_csv(simulated):
     assert log.events["rail_exit"] == pytest.approx(data["rail_exit_time_s"], abs=1e-3)
 
 
+def test_openrocket_csv_to_apogee_reads_back(runner, tmp_path):
+    """A flight exported to apogee only (no --descent) ends on its highest sample with the
+    vertical speed ~0: read as ending at apogee (it was refused as 'still climbing'), not
+    as a truncated climb; a log cut 3 s before apogee (vertical speed ~30 m/s) still is."""
+    from ironbark_opt.errors import InputError
+    from ironbark_opt.telemetry import read_log
+    orcsv = tmp_path / "or.csv"
+    data = json.loads(_run(runner, ["simulate", ROCKET, "--csv", str(orcsv), "--csv-format", "openrocket",
+                                    "--json"]).stdout)
+    log = read_log(orcsv)
+    print(f"apogee-only OpenRocket CSV: apogee {log.apogee_agl:.2f} m at {log.events['apogee']:.2f} s "
+          f"vs --json {data['apogee_agl_m']:.2f} m at {data['apogee_time_s']:.2f} s")
+    assert log.apogee_agl == pytest.approx(data["apogee_agl_m"], abs=0.05)
+    assert log.events["apogee"] == pytest.approx(data["apogee_time_s"], abs=0.05)
+    lines = orcsv.read_text(encoding="utf-8").splitlines(keepends=True)
+    head = [ln for ln in lines if ln.startswith("#")]
+    rows = [ln for ln in lines if not ln.startswith("#")]
+    keep = [r for r in rows if float(r.split(",")[0]) < data["apogee_time_s"] - 3.0]
+    cut = tmp_path / "cut.csv"
+    cut.write_text("".join(head + keep), encoding="utf-8")
+    with pytest.raises(InputError, match="still climbing"):
+        read_log(cut)
+
+
 def test_kml_needs_the_site_position(runner, tmp_path):
     src = ROOT / "examples/calisto"
     for f in src.iterdir():
