@@ -168,8 +168,6 @@ def _common_roll_offset(fin_sets) -> float:
     return float(np.pi / ref.count - (np.pi / 2 - ref.roll_angle) % (2 * np.pi))
 
 
-
-
 def _check_no_pinch(x, r):
     """Refuse a body that narrows to (almost) nothing and widens again, e.g. OpenRocket's
     'base drag hack' (a tube ending in a flat base, then a transition from ~0 radius out to

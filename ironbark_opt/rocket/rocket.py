@@ -90,12 +90,12 @@ class Rocket:
                               "body radius: a diameter given as the radius? (the coefficients of "
                               "drag curves and tables are on this area)", UserWarning, stacklevel=2)
         self._reference_radius = reference_radius
-        for fins in self.fin_sets():
+        fin_sets = self.fin_sets()
+        for fins in fin_sets:
             if fins.x < 0.0 or fins.x > self.length():
                 raise InputError(f"fin set '{fins.name}' root leading edge x = {fins.x} m is "
                                  f"off the body (0 to {self.length():.6g} m)",
                                  field=f"components[{self._index(fins)}].x")
-        fin_sets = self.fin_sets()
         for fins in fin_sets:
             girth = 2 * np.pi * float(self.radius_at(fins.x))
             if fins.count * fins.thickness > girth:
