@@ -75,6 +75,15 @@ def sin_angle(alpha):
     return sin(alpha)
 
 
+def cos_angle(alpha):
+    """``cos(alpha)``; symbolic-safe, as :func:`sin_angle` (``x / sqrt(x^2 + y^2)`` for a
+    CasADi SX ``alpha = atan2(y, x)``)."""
+    if isinstance(alpha, ca.SX) and alpha.is_scalar() and alpha.is_op(ca.OP_ATAN2):
+        y, x = alpha.dep(0), alpha.dep(1)
+        return x / ca.sqrt(x * x + y * y)
+    return cos(alpha)
+
+
 def if_else(cond, a, b):
     """Symbolic-safe ``cond ? a : b`` (evaluates both branches)."""
     if is_symbolic(cond, a, b):

@@ -28,6 +28,10 @@ adds it at every step), so:
   McCoy's MC DRAG base pressure above Mach 1, is recorded in the metadata
   as ``base_drag_model``).
 
+Friction and base drag have no incidence model of their own: both columns (and the
+friction the flight adds) fall as Jorgensen's cos^2 alpha (NASA TR R-474, 1977,
+eq. 2; :func:`ironbark_opt.aero.crossflow.axial_factor`), zero at 90 deg.
+
 Likewise ``CN = CN_pressure + CN_crossflow`` and ``Cm = Cm_pressure +
 Cm_crossflow``: a potential solution has no viscous cross-flow, the
 non-linear body lift that dominates at large angles of attack.  It is the
@@ -109,6 +113,7 @@ from dataclasses import replace
 import numpy as np
 
 from ironbark_opt.aero.barrowman import body_lift
+from ironbark_opt.aero.crossflow import axial_factor
 from ironbark_opt.aero.crossflow import eta as crossflow_eta
 from ironbark_opt.errors import InputError, SolverError
 
@@ -864,12 +869,15 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
         cn_x = np.asarray(cn_x, float) * np.ones((len(mach), n_a))
         cm_x = -cn_x * (x_plan - xref) / lref
         includes.append("crossflow")
-    f_in = ca_f[:, None] * ones if friction_in_table else 0.0 * ones
-    table = {"CA": ca_p + f_in + ca_b[:, None] * ones,
-             "CA_power_on": ca_p + f_in + ca_b_on[:, None] * ones,
+    # friction and base have no incidence model of their own: Jorgensen's cos^2 alpha
+    # (NASA TR R-474 eq. 2), as the flight applies to friction kept out of the table
+    jorg = axial_factor(alpha)[None, :]
+    f_in = ca_f[:, None] * jorg if friction_in_table else 0.0 * ones
+    table = {"CA": ca_p + f_in + ca_b[:, None] * jorg,
+             "CA_power_on": ca_p + f_in + ca_b_on[:, None] * jorg,
              "CN": cn_p + cn_x, "Cm": cm_p + cm_x, "CA_pressure": ca_p,
              "CA_pressure_linear": ca_lin,
-             "CA_friction": ca_f[:, None] * ones, "CA_base": ca_b[:, None] * ones,
+             "CA_friction": ca_f[:, None] * jorg, "CA_base": ca_b[:, None] * jorg,
              "CN_pressure": cn_p, "Cm_pressure": cm_p,
              "CN_crossflow": cn_x, "Cm_crossflow": cm_x}
     meta = {"generator": "ironbark panair.sweep (built-in panel solver)",
@@ -904,7 +912,8 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                                  f"sin^2 alpha at the planform centroid, K = {crossflow_k:g}")),
             "alpha_deg_high_angle_model": [round(math.degrees(a), 6) for a in ext],
             "high_angle_model": "potential part continued with Jorgensen's shape sin 2a cos(a/2), "
-                                "CA with cos^2 a (NASA TR R-474 eq. 1-2), plus the cross-flow",
+                                "CA with cos^2 a (NASA TR R-474 eq. 1-2), plus the cross-flow; "
+                                "friction and base CA(0) cos^2 a at every angle (eq. 2)",
             **info, **(extra_metadata or {})}
     json.dumps(meta)   # must be serialisable
     return AeroTable(mach, alpha, table, reference_area=sref,

@@ -118,3 +118,18 @@ def normal_force(alpha, mach, planform_area: float, reference_area: float, finen
     k = eta(fineness_ratio) * a_plan / aref
     s = m.sin_angle(alpha)
     return k * cdc(mach * m.fabs(s)) * s * s
+
+
+def axial_factor(alpha):
+    """Angle-of-attack factor of an axial-force part that has no incidence model of its
+    own (skin friction, base drag, a zero-lift drag curve) [-]; symbolic-safe.
+
+    Jorgensen's axial force of a body to very high angles of attack, NASA TR R-474,
+    1977, eq. (2): CA(alpha) = CA(alpha = 0) cos^2 alpha, 0 <= alpha <= 90 deg (the flow
+    component along the axis carries the axial force).  ``alpha`` [rad] is the total
+    angle of attack; past 90 deg (flying tail first) the factor is held at 0, as the
+    tables hold their last angle.
+    """
+    c = m.fmax(m.cos_angle(alpha), 0.0)
+    return c * c
+

@@ -8,6 +8,8 @@ Sources, in order of precedence for each coefficient:
   without a table: friction + base drag only, which misses pressure/wave
   drag, so :func:`build_aero_model` refuses that (a table or drag curve is
   required).  The launch guides' drag (:mod:`.protuberance`) goes with the friction.
+  Friction, base drag and a drag curve of Mach alone fall with the angle of attack
+  as cos^2 alpha (Jorgensen, NASA TR R-474 eq. 2; :func:`.crossflow.axial_factor`).
 - **Normal force CN and pitching moment Cm**: the table's ``CN``/``Cm`` when
   present; otherwise the Barrowman baseline (:mod:`.barrowman`) with
   ``CN = CN_alpha(M) sin(alpha)`` plus the body's viscous cross-flow
@@ -33,6 +35,7 @@ import numpy as np
 from ironbark_opt import _math as m
 from ironbark_opt.aero import barrowman, damping
 from ironbark_opt.aero.base_drag import BaseDrag
+from ironbark_opt.aero.crossflow import axial_factor
 from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
 from ironbark_opt.errors import InputError
 from ironbark_opt.rocket.hardware import DEFAULT_BUTTON
@@ -203,8 +206,14 @@ class AeroModel:
 
     # -- axial ------------------------------------------------------------------
     def axial(self, mach, alpha, reynolds_per_m, power_on: bool):
-        """CA [-] (positive rearward)."""
-        ca_coef = 0.0 * mach
+        """CA [-] (positive rearward).
+
+        The parts without an incidence model of their own (skin friction, base drag, the
+        jet's relief, and a table's CA that depends on Mach alone: drag curves, the
+        empirical path) fall with the angle of attack as Jorgensen's cos^2 alpha
+        (:func:`~ironbark_opt.aero.crossflow.axial_factor`); a table's CA over angle of
+        attack (a panel table's pressure and base) is its own."""
+        table_ca = 0.0 * mach
         t = self.table
         if t is not None and t.has("CA"):
             name = "CA_power_on" if (power_on and t.has("CA_power_on")) else "CA"
@@ -215,16 +224,19 @@ class AeroModel:
             shared = m.is_symbolic(alpha) or current_form() == "pp"
             merged = self._merged_drag() if m.is_symbolic(mach) and shared and mach.numel() == 1 else ()
             if name in merged:
-                ca_coef = ca_coef + self._mach_tables(mach)[5 + merged.index(name)]
+                table_ca = table_ca + self._mach_tables(mach)[5 + merged.index(name)]
             else:
-                ca_coef = ca_coef + t.symbolic(name, mach, alpha)
+                table_ca = table_ca + t.symbolic(name, mach, alpha)
+        viscous = 0.0 * mach
         if self.friction is not None and "friction" not in self.includes:
-            ca_coef = ca_coef + self.friction.CA(mach, reynolds_per_m)
+            viscous = viscous + self.friction.CA(mach, reynolds_per_m)
         if self.base is not None and "base" not in self.includes:
-            ca_coef = ca_coef + (self.base.CA_power_on(mach) if power_on else self.base.CA_power_off(mach))
+            viscous = viscous + (self.base.CA_power_on(mach) if power_on else self.base.CA_power_off(mach))
         if power_on and self.jet_relief is not None:
-            ca_coef = ca_coef - self.jet_relief.CA_power_off(mach)
-        return ca_coef
+            viscous = viscous - self.jet_relief.CA_power_off(mach)
+        if t is not None and len(t.alpha) == 1:          # a drag curve: Mach alone
+            return (table_ca + viscous) * axial_factor(alpha)
+        return table_ca + viscous * axial_factor(alpha)
 
     # -- normal force and moment -------------------------------------------------
     def _barrowman(self, mach, alpha):

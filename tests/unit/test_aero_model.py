@@ -99,3 +99,34 @@ def test_panel_table_flight_takes_the_jet_off_the_base_while_burning():
         assert off == pytest.approx(without.axial(mach, 0.0, 1e7, power_on=True), rel=1e-12)
         assert off - on == pytest.approx(cd_base(mach, "mccoy") * jet / rocket.reference_area(),
                                          rel=1e-9)
+
+
+def test_axial_parts_without_an_incidence_model_fall_as_cos_squared():
+    """Friction, base drag and a drag curve of Mach alone: Jorgensen's CA(alpha) =
+    CA(0) cos^2 alpha (NASA TR R-474, 1977, eq. 2); a panel table's own CA over angle
+    of attack is kept, only the friction added at flight conditions is scaled.  The
+    flight's SX form (alpha = atan2) is the same number, and the factor is 0 past 90 deg."""
+    from ironbark_opt.aero.crossflow import axial_factor
+    from ironbark_opt.aero.model import build_aero_model
+    from ironbark_opt.aero.table import AeroTable
+    from ironbark_opt.vehicle import load_rocket_geometry
+    a = np.radians([0.0, 10.0, 45.0, 60.0, 90.0, 120.0])
+    np.testing.assert_allclose(axial_factor(a), [1.0, np.cos(a[1]) ** 2, 0.5, 0.25, 0.0, 0.0],
+                               atol=1e-15)
+    y, x = ca.SX.sym("y"), ca.SX.sym("x")
+    f = ca.Function("f", [y, x], [axial_factor(ca.atan2(y, x))])
+    for yv, xv in ((0.3, 2.0), (1.0, 1.0), (2.0, -0.5)):
+        assert float(f(yv, xv)) == pytest.approx(float(axial_factor(np.arctan2(yv, xv))), abs=1e-15)
+    drag_curve = load_setup(ROOT / "examples/calisto/calisto.toml").aero
+    assert len(drag_curve.table.alpha) == 1
+    for alpha in (0.2, 0.9):
+        assert drag_curve.axial(0.5, alpha, 1e7, False) == pytest.approx(
+            drag_curve.axial(0.5, 0.0, 1e7, False) * np.cos(alpha) ** 2, rel=1e-12)
+    rocket, _ = load_rocket_geometry(ROOT / "examples/kestrel/kestrel.toml")
+    table = AeroTable.load(ROOT / "tables/Kestrel.csv")
+    panel = build_aero_model(rocket, table=table)
+    for alpha in (0.1, 0.6):
+        friction = float(panel.friction.CA(0.5, 1e7))
+        assert friction > 0.1
+        assert panel.axial(0.5, alpha, 1e7, False) == pytest.approx(
+            float(table.evaluate("CA", 0.5, alpha)) + friction * np.cos(alpha) ** 2, rel=1e-12)

@@ -178,9 +178,14 @@ def test_build_table_totals(tmp_path):
 
 def test_high_angle_extension_to_90_deg():
     """Angles past the sweep: Jorgensen's potential shape sin 2a cos(a/2) for the panel
-    part (same CP), CA ~ cos^2 a (NASA TR R-474 eq. 1-2), plus the cross-flow."""
+    part (same CP), CA ~ cos^2 a (NASA TR R-474 eq. 1-2), plus the cross-flow; friction
+    and base CA(0) cos^2 a at every angle."""
+    from ironbark_opt.aero.base_drag import BaseDrag
+    from ironbark_opt.aero.friction import FrictionComponent, FrictionDrag
     t = build_table(_bf(), [0.3], np.radians([0.0, 4.0, 8.0]), sref=1e-3, lref=0.03, xref=0.15,
-                    options=COARSE, workers=1, progress=False)
+                    options=COARSE, workers=1, progress=False,
+                    friction=FrictionDrag([FrictionComponent.body("body", 0.3, 0.03)], 1e-3),
+                    base_drag=BaseDrag(np.pi * 0.015**2, 1e-3))
     a = t.alpha
     assert np.degrees(a[-1]) == pytest.approx(90.0) and len(a) == 3 + 5
     g = np.sin(2 * a) * np.cos(a / 2)
@@ -191,6 +196,14 @@ def test_high_angle_extension_to_90_deg():
     xcp = t.values("Cm_pressure")[0, 3:-1] / cn[3:-1]
     np.testing.assert_allclose(xcp, t.values("Cm_pressure")[0, 2] / cn[2], rtol=1e-12)
     assert t.metadata["alpha_deg_high_angle_model"] == [30.0, 45.0, 60.0, 75.0, 90.0]
+    # friction and base (no incidence model of their own): Jorgensen's CA(0) cos^2 alpha
+    # (NASA TR R-474 eq. 2) at every angle, zero broadside
+    for name in ("CA_base", "CA_friction"):
+        col = t.values(name)[0]
+        np.testing.assert_allclose(col, col[0] * np.cos(a) ** 2, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(t.values("CA"), t.values("CA_pressure") + t.values("CA_base"),
+                               rtol=1e-12)
+    assert t.values("CA_base")[0, 0] > 0.05 and abs(t.values("CA")[0, -1]) < 1e-12
     # broadside: the whole normal force is the cross-flow, eta Cdc(M) A_plan/A_ref with
     # l/d = 10: eta = 0.68, and M_c = M = 0.3: Cdc = 1.21 (Jorgensen's figures, hand value)
     a_plan = (0.5 * 2.84 + 7.16) * 0.03**2
