@@ -12,7 +12,7 @@ import math
 
 from ironbark_opt.errors import InputError
 from ironbark_opt.openrocket.components import OrkComponent
-from ironbark_opt.rocket.body import BodyTube, Transition
+from ironbark_opt.rocket.body import CLIPPABLE, BodyTube, Transition
 from ironbark_opt.rocket.fin_sections import FinSection
 from ironbark_opt.rocket.fins import EllipticalFins, FreeformFins, TrapezoidalFins
 from ironbark_opt.rocket.nose import NoseCone
@@ -88,7 +88,11 @@ def body_component(comp: OrkComponent, *, with_mass: bool = False):
         r1, r2 = g["fore_radius"], g["aft_radius"]
         if abs(r1 - r2) < 1e-12:
             return BodyTube(radius=r1, **common)
-        return Transition(fore_radius=r1, aft_radius=r2, **shape_args(comp, abs(r2 - r1)), **common)
+        # OpenRocket clips its ellipsoid, power and Haack transitions unless <shapeclipped>
+        # says false (Transition.Shape.canClip; the file omits it for the other shapes)
+        shape = shape_args(comp, abs(r2 - r1))
+        clipped = bool(g.get("clipped", True)) and shape["shape"] in CLIPPABLE
+        return Transition(fore_radius=r1, aft_radius=r2, clipped=clipped, **shape, **common)
     except InputError as err:
         raise _wrap(comp, err) from None
 

@@ -1,7 +1,7 @@
 """Body tubes and transitions (shoulders, boattails)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -15,6 +15,10 @@ from ironbark_opt.rocket.shapes import canonical_shape, shape_radius
 #: mesh refuses it, :func:`panair.geometry_adapter._check_no_pinch`; an OpenRocket 'base drag
 #: hack' transition starts from one, :meth:`ironbark_opt.openrocket.tree.OrkRocket.base_drag_hack`) [-]
 PINCH_FRACTION = 0.02
+
+#: shapes OpenRocket clips in a transition (``Transition.Shape`` ELLIPSOID, POWER and HAACK
+#: are ``canClip``; its conical, ogive and parabolic transitions are never clipped)
+CLIPPABLE = ("elliptical", "power", "haack")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -57,6 +61,14 @@ class Transition(BodyOfRevolution):
     shape_parameter, ogive_radius
         As for :class:`~ironbark_opt.rocket.nose.NoseCone`, with the radius
         change |aft_radius - fore_radius| in place of the base radius.
+    clipped : bool
+        OpenRocket's clipped transition (its default for the ``elliptical``,
+        ``power`` and ``haack`` shapes, :data:`CLIPPABLE`; no effect on others): the
+        nose shape of the larger radius, lengthened beyond the small end by the clip
+        length c at which it has the smaller radius, and cut there:
+        r(d) = f(c + d; r_large, c + length), d from the small end (OpenRocket
+        ``Transition.getRadius`` / ``calculateClip``).  Unclipped (default), the
+        shape spans the radius change alone: r(d) = r_small + f(d; |dr|, length).
     Other parameters as in :class:`~ironbark_opt.rocket.revolution.BodyOfRevolution`.
     """
 
@@ -65,7 +77,10 @@ class Transition(BodyOfRevolution):
     shape: str = "conical"
     shape_parameter: float | None = None
     ogive_radius: float | None = None
+    clipped: bool = False
     name: str = "transition"
+    #: clip length c [m] (0 when not clipped), set from the other fields
+    clip_length: float = field(default=0.0, init=False, repr=False, compare=False)
 
     def __post_init__(self):
         self._check_common()
@@ -77,14 +92,37 @@ class Transition(BodyOfRevolution):
         p = v.optional(v.number, self.shape_parameter, "shape_parameter")
         rho = v.optional(v.positive, self.ogive_radius, "ogive_radius")
         shape, param = canonical_shape(self.shape, p, rho, self.length, abs(r2 - r1))
+        if not isinstance(self.clipped, (bool, np.bool_)):
+            raise InputError(f"clipped must be true or false, got {self.clipped!r}", field="clipped")
         v.set_fields(self, fore_radius=r1, aft_radius=r2, shape=shape,
-                     shape_parameter=param, ogive_radius=rho)
+                     shape_parameter=param, ogive_radius=rho, clipped=bool(self.clipped))
+        if self.clipped and shape in CLIPPABLE and min(r1, r2) > 0.0:
+            v.set_fields(self, clip_length=self._solve_clip(min(r1, r2), max(r1, r2)))
+
+    def _solve_clip(self, small: float, large: float) -> float:
+        """The clip length c [m] at which the nose shape of radius ``large`` and length
+        c + length has the radius ``small``: bisection, as OpenRocket's ``calculateClip``
+        (the shape's radius rises with c; the bracket doubles from ``length``)."""
+        def excess(c):
+            return float(shape_radius(self.shape, self.shape_parameter, c, c + self.length, large)) - small
+        lo, hi = 0.0, self.length
+        for _ in range(200):
+            if excess(hi) > 0.0:
+                break
+            lo, hi = hi, 2.0 * hi
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if hi - lo <= 1e-12 * self.length:
+                break
+            lo, hi = (mid, hi) if excess(mid) < 0.0 else (lo, mid)
+        return 0.5 * (lo + hi)
 
     def _local_radius(self, local):
         r1, r2 = self.fore_radius, self.aft_radius
         dr = abs(r2 - r1)
         local = np.asarray(local, dtype=float)
-        if r2 > r1:
-            return r1 + shape_radius(self.shape, self.shape_parameter, local, self.length, dr)
-        return r2 + shape_radius(self.shape, self.shape_parameter, self.length - local,
-                                 self.length, dr)
+        d = local if r2 > r1 else self.length - local        # from the small end
+        if self.clip_length > 0.0:
+            c = self.clip_length
+            return shape_radius(self.shape, self.shape_parameter, c + d, c + self.length, max(r1, r2))
+        return min(r1, r2) + shape_radius(self.shape, self.shape_parameter, d, self.length, dr)

@@ -47,7 +47,7 @@ COMPONENT_KEYS = {
     "nose_cone": _BODY + ("shape", "radius", "shape_parameter", "ogive_radius"),
     "body_tube": _BODY + ("radius",),
     "transition": _BODY + ("shape", "fore_radius", "aft_radius", "shape_parameter",
-                           "ogive_radius"),
+                           "ogive_radius", "clipped"),
     "trapezoidal_fins": _FINS + ("root_chord", "tip_chord", "span", "sweep_length",
                                  "sweep_angle_deg"),
     "elliptical_fins": _FINS + ("root_chord", "span"),
@@ -429,7 +429,7 @@ def _read_component(rd: _Reader, d, i, prev):
                 raise rd.error(f"expected a string, got {val!r}", "component", key, i,
                                field=f"{label}.{key}")
             kw[key] = val
-        elif key == "filled":
+        elif key in ("filled", "clipped"):
             if not isinstance(val, bool):
                 raise rd.error(f"expected true or false, got {val!r}", "component", key, i,
                                field=f"{label}.{key}")

@@ -28,7 +28,7 @@ _FIELDS = {
     "nose_cone": _BODY + ("shape", "radius", "shape_parameter", "ogive_radius"),
     "body_tube": _BODY + ("radius",),
     "transition": _BODY + ("shape", "fore_radius", "aft_radius", "shape_parameter",
-                           "ogive_radius"),
+                           "ogive_radius", "clipped"),
     "trapezoidal_fins": _FIN + ("root_chord", "tip_chord", "span", "sweep_length"),
     "elliptical_fins": _FIN + ("root_chord", "span"),
     "freeform_fins": _FIN + ("points",),
@@ -65,7 +65,7 @@ def _component(comp) -> dict:
     out = {"type": kind}
     for key in _FIELDS[kind]:
         val = getattr(comp, key)
-        if key == "filled" and not val:
+        if key in ("filled", "clipped") and not val:
             continue
         if kind == "rail_buttons" and key in ("base_height", "flange_height", "x_other") and not val:
             continue

@@ -92,3 +92,51 @@ def test_fillet_area_limits():
     # on a curved body it is smaller, and it vanishes with the radius
     assert 0 < fillet_area(0.005, 0.025) < (1 - math.pi / 4) * 0.005 ** 2
     assert fillet_area(0.0, 0.025) == 0.0
+
+
+ONE_STAGE = DATA / "01.One-stage_OR22.02.ork"
+_BOATTAIL = ("<thickness>0.002</thickness>\n            <shape>conical</shape>\n"
+             "            <foreradius>auto 0.025</foreradius>")
+
+
+def _ellipsoid_boattail(tmp_path, clipped: str | None):
+    """01.One-stage's boattail (fore radius auto = the 0.025146 m tube, aft 0.01905 m) as a
+    filled 0.06 m ellipsoid; ``<shapeclipped>`` as given (None: absent, as OpenRocket
+    writes no such element before it knew the flag)."""
+    flag = "" if clipped is None else f"\n            <shapeclipped>{clipped}</shapeclipped>"
+    text = read_bytes(ONE_STAGE).decode()
+    for old, new in [(_BOATTAIL, "<thickness>filled</thickness>\n            <shape>ellipsoid</shape>"
+                      f"{flag}\n            <foreradius>auto 0.025</foreradius>"),
+                     ("<length>0.0127</length>", "<length>0.06</length>")]:
+        assert text.count(old) == 1
+        text = text.replace(old, new)
+    p = tmp_path / "bt.ork"
+    p.write_text(text)
+    return [c for c in read_ork(p).rocket.body() if c.kind == "transition"][-1]
+
+
+@pytest.mark.parametrize("clipped", [None, "true"])
+def test_clipped_ellipsoid_transition_is_openrockets(tmp_path, clipped):
+    """OpenRocket clips an ellipsoid/power/Haack transition by default (Transition.Shape
+    canClip, ``<shapeclipped>`` true): the half-ellipse of the large radius R, lengthened
+    past the small end to pass through r there.  With u1 = sqrt(1 - (r/R)^2) its total
+    length is L/u1 and the solid volume pi R^2 L (1 - u1^2/3) (integral of the ellipse);
+    at mid-length the radius is R sqrt(1 - (u1/2)^2)."""
+    comp = _ellipsoid_boattail(tmp_path, clipped)
+    R, r, L, rho = 0.025146, 0.01905, 0.06, 1050.0
+    u1 = math.sqrt(1 - (r / R) ** 2)
+    assert own_mass(comp).mass == pytest.approx(rho * math.pi * R * R * L * (1 - u1 * u1 / 3), rel=1e-3)
+    from ironbark_opt.openrocket.convert import body_component
+    tr = body_component(comp)
+    assert float(tr.radius_at(comp.x + L / 2)) == pytest.approx(R * math.sqrt(1 - (u1 / 2) ** 2), rel=1e-6)
+    assert float(tr.radius_at(comp.x + L)) == pytest.approx(r, rel=1e-6)
+
+
+def test_unclipped_ellipsoid_transition_spans_the_radius_change(tmp_path):
+    """``<shapeclipped>false``: r_small + dr sqrt(1 - (1 - d/L)^2), solid volume
+    pi L (r^2 + 2 r dr pi/4 + dr^2 2/3) (the ellipse's mean height pi/4, of its square 2/3)."""
+    comp = _ellipsoid_boattail(tmp_path, "false")
+    R, r, L, rho = 0.025146, 0.01905, 0.06, 1050.0
+    dr = R - r
+    vol = math.pi * L * (r * r + 2 * r * dr * math.pi / 4 + dr * dr * 2 / 3)
+    assert own_mass(comp).mass == pytest.approx(rho * vol, rel=1e-3)

@@ -349,3 +349,22 @@ def test_drag_duplicates_key(tmp_path):
     with pytest.raises(InputError, match='expected "error" or "mean"') as err:
         loads_rocket_toml(bad, tmp_path / "b.toml")
     assert err.value.line == line and err.value.field == "aero.drag_duplicates"
+
+
+def test_clipped_transition_round_trips_through_toml(tmp_path):
+    """``clipped`` (OpenRocket's clipped Haack/power/ellipsoid transition, as an .ork
+    converts to) is read and written back: the boattail keeps its clip and its mass."""
+    from ironbark_opt.rocket import dump_rocket_toml
+    text = CALISTO.read_text()
+    old = 'aft_radius = 0.0435\n'
+    assert text.count(old) == 1
+    for name in ("Cesaroni_M1670.eng", "powerOffDragCurve.csv", "powerOnDragCurve.csv"):
+        shutil.copy(CALISTO.parent / name, tmp_path / name)
+    p = tmp_path / "c.toml"
+    p.write_text(text.replace(old, old + 'shape = "haack"\nclipped = true\n'))
+    f1 = load_rocket_toml(p)
+    tail = next(c for c in f1.rocket.components if isinstance(c, Transition))
+    assert tail.clipped and tail.clip_length > 0.0
+    f2 = load_rocket_toml(dump_rocket_toml(f1, tmp_path / "copy.toml"))
+    assert f2.rocket.components == f1.rocket.components
+    assert next(c for c in f2.rocket.components if isinstance(c, Transition)).clip_length == tail.clip_length
