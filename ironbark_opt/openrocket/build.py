@@ -133,8 +133,11 @@ def geometry(doc: OrkDocument) -> Rocket:
     if guide is None:
         for c in doc.rocket.core_components():
             if c.kind == "launchlug" and c.geo["radius"] > c.geo["thickness"] >= 0:
+                # OpenRocket's instances: identical lugs, fronts 'instanceseparation' apart
+                n, sep = c.geo["instances"]
                 guide = LaunchLug(x=c.x, length=c.geo["length"], outer_radius=c.geo["radius"],
-                                  inner_radius=c.geo["radius"] - c.geo["thickness"], name=c.name)
+                                  inner_radius=c.geo["radius"] - c.geo["thickness"], name=c.name,
+                                  count=n, separation=sep if n > 1 else 0.0)
                 break
     if guide is not None:
         comps.append(guide)

@@ -12,7 +12,7 @@ import numpy as np
 
 from ironbark_opt.errors import InputError
 from ironbark_opt import validate as v
-from ironbark_opt.rocket.mass import MassProperties
+from ironbark_opt.rocket.mass import MassProperties, combine_properties
 
 
 def _check_tube(tube, **extra) -> None:
@@ -193,17 +193,23 @@ class RailButtons:
 
 @dataclass(frozen=True, kw_only=True)
 class LaunchLug:
-    """A launch lug: a tube of ``length`` [m] from ``x`` [m], radii in [m].
+    """A launch lug: a tube of ``length`` [m] from ``x`` [m], radii in [m]; ``count``
+    identical lugs in a row (OpenRocket's ``instancecount``), fronts ``separation`` [m]
+    apart.
 
     Parameters
     ----------
     x : float [m]
-        Front end, aft of the nose tip.
+        Front end of the first lug, aft of the nose tip.
     length : float [m]
     outer_radius, inner_radius : float [m]
         ``inner_radius < outer_radius``.
     density : float [kg/m^3] or None
     name : str
+    count : int [-]
+        Number of lugs (default 1); each has its own drag.
+    separation : float [m]
+        Front-to-front distance of consecutive lugs (>= length when ``count`` > 1).
     """
 
     x: float = 0.0
@@ -212,26 +218,40 @@ class LaunchLug:
     inner_radius: float = 0.0
     density: float | None = None
     name: str = "launch lug"
+    count: int = 1
+    separation: float = 0.0
 
     def __post_init__(self):
-        _check_tube(self)
+        if isinstance(self.count, bool) or not isinstance(self.count, (int, np.integer)) or self.count < 1:
+            raise InputError(f"count must be a whole number >= 1, got {self.count!r}", field="count")
+        _check_tube(self, count=int(self.count), separation=v.nonnegative(self.separation, "separation"))
+        if self.count > 1 and self.separation < self.length:
+            raise InputError(f"separation {self.separation} m of {self.count} lugs is shorter than "
+                             f"their length {self.length} m", field="separation")
+
+    @property
+    def x_end(self) -> float:
+        """Aft end of the last lug [m]."""
+        return self.x + (self.count - 1) * self.separation + self.length
 
     @property
     def rail_guides(self) -> tuple[float, float]:
-        """``(x_fore, x_aft)`` [m]: the lug's two ends ride the rod."""
-        return self.x, self.x + self.length
+        """``(x_fore, x_aft)`` [m]: the first lug's front and the last one's aft end ride the rod."""
+        return self.x, self.x_end
 
     def wetted_area(self) -> float:
-        """Outer lateral surface [m^2]."""
-        return 2.0 * np.pi * self.outer_radius * self.length
+        """Outer lateral surface of all the lugs [m^2]."""
+        return 2.0 * np.pi * self.outer_radius * self.length * self.count
 
     def mass_properties(self) -> MassProperties:
-        """Thick-walled tube treated as on-axis: m L^2/12 transverse (numeric-only)."""
+        """Thick-walled tubes treated as on-axis: m L^2/12 transverse each (numeric-only)."""
         if self.density is None:
             return MassProperties(0.0, self.x, np.zeros((3, 3)))
         ro, ri, L = self.outer_radius, self.inner_radius, self.length
         m = self.density * np.pi * (ro * ro - ri * ri) * L
-        return MassProperties.axisymmetric(m, self.x + 0.5 * L, m * L * L / 12.0, 0.0)
+        return combine_properties([MassProperties.axisymmetric(m, self.x + i * self.separation + 0.5 * L,
+                                                               m * L * L / 12.0, 0.0)
+                                   for i in range(self.count)])
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -124,7 +124,7 @@ class Rocket:
             if isinstance(comp, RailButtons):
                 stations = (("x_fore", comp.x_fore), ("x_aft", comp.x_aft))
             elif isinstance(comp, LaunchLug):
-                stations = (("x", comp.x), ("length", comp.x + comp.length))
+                stations = (("x", comp.x), ("length", comp.x_end))
             elif isinstance(comp, PointMass):
                 stations = (("x", comp.x),)
             else:

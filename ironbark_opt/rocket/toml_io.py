@@ -55,7 +55,7 @@ COMPONENT_KEYS = {
     "rail_buttons": ("type", "name", "x_fore", "x_aft", "height", "mass_each", "angle_deg",
                      "outer_diameter", "inner_diameter", "base_height", "flange_height", "x_other"),
     "launch_lug": ("type", "name", "x", "length", "outer_radius", "inner_radius",
-                   "material", "density"),
+                   "material", "density", "count", "separation"),
     "point_mass": ("type", "name", "x", "mass", "I_transverse", "I_axial"),
     "inner_tube": ("type", "name", "x", "length", "outer_radius", "inner_radius", "material",
                    "density", "mass"),

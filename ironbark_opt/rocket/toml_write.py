@@ -34,7 +34,8 @@ _FIELDS = {
     "freeform_fins": _FIN + ("points",),
     "rail_buttons": ("name", "x_fore", "x_aft", "height", "mass_each", "outer_diameter",
                      "inner_diameter", "base_height", "flange_height", "x_other"),
-    "launch_lug": ("name", "x", "length", "outer_radius", "inner_radius", "density"),
+    "launch_lug": ("name", "x", "length", "outer_radius", "inner_radius", "density", "count",
+                   "separation"),
     "point_mass": ("name", "x", "mass", "I_transverse", "I_axial"),
     "inner_tube": ("name", "x", "length", "outer_radius", "inner_radius", "density", "mass"),
 }
@@ -66,6 +67,8 @@ def _component(comp) -> dict:
     for key in _FIELDS[kind]:
         val = getattr(comp, key)
         if key in ("filled", "clipped") and not val:
+            continue
+        if kind == "launch_lug" and key in ("count", "separation") and comp.count == 1:
             continue
         if kind == "rail_buttons" and key in ("base_height", "flange_height", "x_other") and not val:
             continue

@@ -437,3 +437,31 @@ def test_bad_fin_outline_names_the_files_element(tmp_path):
     with pytest.raises(InputError) as err:
         load_ork_geometry(_write(tmp_path, bad, "h.ork"))
     assert err.value.field.endswith("trapezoidfinset[1]/height"), err.value.field
+
+
+def test_every_launch_lug_instance_has_its_drag(tmp_path):
+    """OpenRocket's <instancecount> of a launch lug: n identical lugs, each with drag (as its
+    mass already was); before, the drag was one lug's.  Two lugs 0.2 m apart drag as the
+    file's one lug plus the same lug moved 0.2 m aft (each in the boundary layer at its
+    station), and the rod runs from the first lug's front to the second one's aft end."""
+    from ironbark_opt.aero.model import guide_drag
+    from ironbark_opt.openrocket.build import load_ork_geometry
+    text = _xml("01.One-stage_OR22.02.ork")
+    one = _write(tmp_path, text, "one.ork")
+    blk = text[text.index("<launchlug>"):text.index("</launchlug>")]
+    two = _write(tmp_path, text.replace(blk, blk.replace("<instancecount>1<", "<instancecount>2<")
+                                        .replace("<instanceseparation>0.06<", "<instanceseparation>0.2<")),
+                 "two.ork")
+    offset = "<axialoffset method=\"top\">0.13741205324727715</axialoffset>"
+    moved = _write(tmp_path, text.replace(blk, blk.replace(offset, offset.replace(
+        "0.13741205324727715", repr(0.13741205324727715 + 0.2)))), "moved.ork")
+    r1, r2, r3 = load_ork_geometry(one), load_ork_geometry(two), load_ork_geometry(moved)
+    area, mach, re = r1.reference_area(), 0.3, 7e6
+
+    def ca(rocket):
+        return sum(float(d.CA(mach, re, area)) for d in guide_drag(rocket)[0])
+    assert r3.rail_guides()[0] == pytest.approx(r1.rail_guides()[0] + 0.2)
+    assert ca(r1) > 0.0
+    assert ca(r2) == pytest.approx(ca(r1) + ca(r3), rel=1e-12)
+    x0, x1 = r1.rail_guides()
+    assert r2.rail_guides() == pytest.approx((x0, x0 + 0.2 + (x1 - x0)))

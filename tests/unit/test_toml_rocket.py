@@ -368,3 +368,27 @@ def test_clipped_transition_round_trips_through_toml(tmp_path):
     f2 = load_rocket_toml(dump_rocket_toml(f1, tmp_path / "copy.toml"))
     assert f2.rocket.components == f1.rocket.components
     assert next(c for c in f2.rocket.components if isinstance(c, Transition)).clip_length == tail.clip_length
+
+
+def test_launch_lugs_in_a_row_round_trip_with_their_mass_and_rod_length(tmp_path):
+    """``count``/``separation`` of a launch lug: two aluminium lugs 0.3 m apart weigh twice
+    one (rho pi (ro^2 - ri^2) L each, CGs at 0.85 and 1.15 m), ride the rod from 0.8 to
+    1.2 m, and are written back by to_toml; a separation shorter than a lug is refused."""
+    from ironbark_opt.rocket import dump_rocket_toml
+    old = "material = \"aluminium\"\n"
+    text = _base()
+    assert text.count("inner_radius = 0.005\n" + old) == 1
+    p = _write(tmp_path, text.replace("inner_radius = 0.005\n" + old,
+                                      "inner_radius = 0.005\n" + old + "count = 2\nseparation = 0.3\n"))
+    f1 = load_rocket_toml(p)
+    lug = next(c for c in f1.rocket.components if isinstance(c, LaunchLug))
+    from ironbark_opt.rocket import material_density
+    m1 = material_density("aluminium") * math.pi * (0.006 ** 2 - 0.005 ** 2) * 0.1
+    assert lug.mass_properties().mass == pytest.approx(2 * m1, rel=1e-12)
+    assert lug.mass_properties().cg_x == pytest.approx(1.0, rel=1e-12)
+    assert f1.rocket.rail_guides() == (0.8, pytest.approx(1.2))
+    f2 = load_rocket_toml(dump_rocket_toml(f1, tmp_path / "copy.toml"))
+    assert f2.rocket.components == f1.rocket.components
+    p.write_text(p.read_text().replace("separation = 0.3", "separation = 0.05"))
+    with pytest.raises(InputError, match="separation"):
+        load_rocket_toml(p)
