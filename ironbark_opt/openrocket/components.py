@@ -31,6 +31,8 @@ EXTERNAL = ("launchlug", "railbutton", "tubefinset")
 PARALLEL = ("parallelstage", "boosterset")
 UNSUPPORTED = {"podset": "pods (podset)"}
 KNOWN = BODY + FINS + RINGS + MASS_OBJECTS + EXTERNAL + ("stage",)
+#: fin cross-sections read from ``<crosssection>`` (OpenRocket 1.0-24.12 ``FinSet.CrossSection``)
+FIN_SECTIONS = ("square", "rounded", "airfoil")
 
 #: OpenRocket ``ClusterConfiguration`` names -> number of tubes
 CLUSTER_COUNTS = {"single": 1, "double": 2, "3-row": 3, "triple": 3, "3-ring": 3, "4-row": 4,
@@ -244,7 +246,13 @@ def parse_geometry(el: Element) -> tuple[dict, float]:
         g["count"] = int(el.number("fincount", 3, minimum=1))
         g["thickness"] = el.number("thickness", required=True, minimum=0.0)
         g["cant"] = _angle(el, "cant")
-        g["section"] = (el.text("crosssection") or "square").lower()
+        g["section"] = (el.text("crosssection") or "square").strip().lower()
+        if g["section"] not in FIN_SECTIONS:
+            # e.g. a later OpenRocket's 'triangular' (bevelled leading edge): its drag and
+            # mass differ from a square plate's, so no silent square
+            raise el.error(f"fin set '{el.text('name') or k}': cross-section {g['section']!r} is not "
+                           f"supported; expected one of {', '.join(FIN_SECTIONS)} (OpenRocket's "
+                           f"FinSet.CrossSection)", "crosssection")
         g["fillet_radius"] = el.number("filletradius", 0.0, minimum=0.0)
         g["fillet_material"] = material(el, "filletmaterial")
         g["tab_height"] = el.number("tabheight", 0.0, minimum=0.0)

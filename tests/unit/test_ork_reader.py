@@ -465,3 +465,17 @@ def test_every_launch_lug_instance_has_its_drag(tmp_path):
     assert ca(r2) == pytest.approx(ca(r1) + ca(r3), rel=1e-12)
     x0, x1 = r1.rail_guides()
     assert r2.rail_guides() == pytest.approx((x0, x0 + 0.2 + (x1 - x0)))
+
+
+def test_unknown_fin_cross_section_is_refused_not_flown_square(tmp_path):
+    """A <crosssection> other than square, rounded or airfoil (e.g. a later OpenRocket's
+    'triangular') was flown as a square plate without a word (01.One-stage: apogee 669 m
+    rounded, 501 m as the square it became); now refused naming the fin set."""
+    text = _xml("01.One-stage_OR22.02.ork")
+    assert text.count("<crosssection>rounded</crosssection>") == 1
+    p = _write(tmp_path, text.replace("<crosssection>rounded</crosssection>",
+                                      "<crosssection>triangular</crosssection>"))
+    with pytest.raises(InputError, match="'Fin set': cross-section 'triangular' is not supported; "
+                                         "expected one of square, rounded, airfoil") as err:
+        read_ork(p)
+    assert err.value.field.endswith("trapezoidfinset[1]/crosssection")
