@@ -87,6 +87,36 @@ def cluster_motor_file(path: Path, motor, count: int) -> tuple[Path, str]:
     return out, designation
 
 
+def _rail_buttons(buttons: list) -> RailButtons | None:
+    """The rail buttons of ``[(component, its buttons' stations [m])]``: the first and last
+    button of the first component with two or more; without one, the fore-most and aft-most
+    of the single buttons (OpenRocket designs often add each button as its own component).
+    Every other button is in ``x_other`` (drag; each takes the riding component's size:
+    OpenRocket's RailButtonCalc sizes each instance alike).  None with fewer than two."""
+    riding = next(((c, xs) for c, xs in buttons
+                   if c.geo["instances"][0] >= 2 and c.geo["instances"][1] > 0), None)
+    if riding is not None:
+        c, xs = riding
+        x_fore, x_aft = xs[0], xs[-1]
+        others = xs[1:-1] + [x for c2, xs2 in buttons if c2 is not c for x in xs2]
+    else:
+        stations = sorted(((x, i) for i, (_, xs) in enumerate(buttons) for x in xs))
+        if len(stations) < 2 or not stations[-1][0] > stations[0][0]:
+            return None
+        (x_fore, first), x_aft = stations[0], stations[-1][0]
+        c = buttons[first][0]
+        others = [x for x, _ in stations[1:-1]]
+    g = c.geo
+    size = {}
+    if g["outer_diameter"] > 0 and g["height"] > 0 and g["base_height"] + g["flange_height"] <= g["height"]:
+        size = {"outer_diameter": g["outer_diameter"], "base_height": g["base_height"],
+                "flange_height": g["flange_height"],
+                "inner_diameter": min(g["inner_diameter"], g["outer_diameter"])}
+    return RailButtons(x_fore=x_fore, x_aft=x_aft, height=g["height"], name=c.name,
+                       angle=math.radians(c.element.number("angleoffset", 0.0)),
+                       x_other=tuple(others), **size)
+
+
 def geometry(doc: OrkDocument) -> Rocket:
     """The Rocket (geometry; mass from :meth:`OrkDocument.dry_mass_properties`).
 
@@ -95,7 +125,6 @@ def geometry(doc: OrkDocument) -> Rocket:
     give, and the stability is that of the real rocket."""
     hack = doc.rocket.base_drag_hack()             # warned about when read (tree.py)
     comps = [convert.body_component(c) for c in doc.rocket.body() if c is not hack]
-    guide = None
     buttons = []                                    # (component, its buttons' stations [m])
     for c in doc.rocket.core_components():          # parallel boosters: openrocket.parallel
         if c.kind == "tubefinset":
@@ -114,22 +143,7 @@ def geometry(doc: OrkDocument) -> Rocket:
             n, sep = c.geo["instances"]
             x0 = c.x + 0.5 * c.length
             buttons.append((c, [x0 + i * sep for i in range(n)]))
-    for c, xs in buttons:
-        # the first component of two or more buttons rides the rail; every button has drag
-        # (the others take its size: OpenRocket's RailButtonCalc sizes each instance alike)
-        n, sep = c.geo["instances"]
-        if n >= 2 and sep > 0:
-            g = c.geo
-            others = xs[1:-1] + [x for c2, xs2 in buttons if c2 is not c for x in xs2]
-            size = {}
-            if g["outer_diameter"] > 0 and g["height"] > 0 and g["base_height"] + g["flange_height"] <= g["height"]:
-                size = {"outer_diameter": g["outer_diameter"], "base_height": g["base_height"],
-                        "flange_height": g["flange_height"],
-                        "inner_diameter": min(g["inner_diameter"], g["outer_diameter"])}
-            guide = RailButtons(x_fore=xs[0], x_aft=xs[-1], height=g["height"], name=c.name,
-                                angle=math.radians(c.element.number("angleoffset", 0.0)),
-                                x_other=tuple(others), **size)
-            break
+    guide = _rail_buttons(buttons)
     if guide is None:
         for c in doc.rocket.core_components():
             if c.kind == "launchlug" and c.geo["radius"] > c.geo["thickness"] >= 0:

@@ -479,3 +479,31 @@ def test_unknown_fin_cross_section_is_refused_not_flown_square(tmp_path):
                                          "expected one of square, rounded, airfoil") as err:
         read_ork(p)
     assert err.value.field.endswith("trapezoidfinset[1]/crosssection")
+
+
+_BUTTONS = """<railbutton><name>{name}</name><instancecount>{n}</instancecount>
+<instanceseparation>0.4</instanceseparation><angleoffset method="relative">180.0</angleoffset>
+<axialoffset method="top">{x}</axialoffset><position type="top">{x}</position><finish>normal</finish>
+<material type="bulk" density="1420.0">Delrin</material><outerdiameter>0.0097</outerdiameter>
+<innerdiameter>0.008</innerdiameter><height>0.0097</height><baseheight>0.002</baseheight>
+<flangeheight>0.002</flangeheight><screwheight>0.0</screwheight></railbutton>"""
+
+
+def test_single_rail_buttons_in_separate_components_ride_the_rail(tmp_path):
+    """Two rail buttons added as two OpenRocket components of one button each (a common way
+    to draw them) had neither rail guides nor drag (01.One-stage with its lug replaced: apogee
+    702.1 m, rail exit 18.2 m/s, against 676.7 m and 12.0 m/s with the same buttons as one
+    two-instance component); now they ride the rail and drag exactly as the pair does."""
+    from ironbark_opt.aero.model import guide_drag
+    from ironbark_opt.openrocket.build import load_ork_geometry
+    text = _xml("01.One-stage_OR22.02.ork")
+    lug = text[text.index("<launchlug>"):text.index("</launchlug>") + len("</launchlug>")]
+    pair = _write(tmp_path, text.replace(lug, _BUTTONS.format(name="Buttons", n=2, x=0.05)), "pair.ork")
+    single = _write(tmp_path, text.replace(lug, _BUTTONS.format(name="Aft", n=1, x=0.45)
+                                           + _BUTTONS.format(name="Fore", n=1, x=0.05)), "single.ork")
+    r2, r1 = load_ork_geometry(pair), load_ork_geometry(single)
+    assert r2.rail_guides() is not None
+    assert r1.rail_guides() == pytest.approx(r2.rail_guides(), abs=1e-12)
+    area, mach, re = r2.reference_area(), 0.3, 7e6
+    ca = [sum(float(d.CA(mach, re, area)) for d in guide_drag(r)[0]) for r in (r1, r2)]
+    assert ca[1] > 0.0 and ca[0] == pytest.approx(ca[1], rel=1e-12)
