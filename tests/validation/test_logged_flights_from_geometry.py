@@ -36,6 +36,12 @@ the altimeter's logged apogee, next to the prediction OpenRocket stored in the s
 - Session 21, no leading-edge suction on the fins (panair.sweep: the fins' axial force at
   incidence held at its zero-incidence value): FT1 -2.15 -> -2.18 %, FT2 +0.51 -> +0.41 %,
   APEX +6.25 % unchanged.
+- Session 22, our axial-force coefficient beside the one OpenRocket stored along its own
+  trajectory (APEX's file stores it; FT1/FT2's do not): printed per Mach number, boost and
+  coast.  APEX's +6.25 % against OpenRocket's +1.01 % is mostly the boost: OpenRocket keeps
+  the whole base drag while the motor burns, we take the 38 mm motor's cross-section off
+  it (68 % of the base; Niskanen 2013 sec. 3.4.5): without that relief APEX flies +2.16 %,
+  FT1 -2.97 %, FT2 -1.57 % (with it +6.25, -2.17, +0.42 %).
 
 Source: tests/data/telemetry (copied from ../shared/fixtures/telemetry; README there:
 FT1 2198.6 m AGL, FT2 2669.0 m AGL, APEX 9335 ft = 2845.3 m AGL, max of the logs).
@@ -88,3 +94,55 @@ def test_logged_flight_from_ork_geometry(name, tmp_path, monkeypatch):
           f"{'closer' if abs(e_ours) < abs(e_or) else 'NOT closer'} than OpenRocket"
           + (" (goal NOT MET)" if goal and abs(e_ours) >= abs(e_or) else ""))
     assert abs(e_ours) < bound
+    rows = _drag_beside_openrocket(ork, sim_name, f"{stem}.csv")
+    for phase, mach, ours_ca, or_ca, ours_parts, or_parts in rows:
+        print(f"  {phase} Mach {mach:.3f}: CA ours {ours_ca:.3f} (friction {ours_parts[0]:.3f}, "
+              f"pressure {ours_parts[1]:+.3f}, base {ours_parts[2]:.3f}), OpenRocket {or_ca:.3f} "
+              f"(friction {or_parts[0]:.3f}, pressure {or_parts[1]:+.3f}, base {or_parts[2]:.3f}): "
+              f"{100 * (ours_ca / or_ca - 1):+.1f} %")
+    # measured (session 22, APEX, the one file storing its drag): coast within -13.8 ...
+    # +3.1 % (our zero pressure drag below the critical Mach number 0.88 against
+    # OpenRocket's 0.018-0.129); boost -16.6 ... -38.0 % (OpenRocket keeps the whole base
+    # drag while the motor burns, we take the motor's cross-section off it, 68 % of
+    # APEX's base: Niskanen 2013 sec. 3.4.5)
+    coast = [100 * (o / r - 1) for phase, m, o, r, _, _ in rows if phase == "coast" and m <= 0.95]
+    assert all(abs(e) <= 20.0 for e in coast), coast
+
+
+def _drag_beside_openrocket(ork, sim_name, table_csv, machs=(0.3, 0.5, 0.7, 0.8, 0.9, 1.0)):
+    """Our axial-force coefficient against the one OpenRocket stored along its own
+    trajectory of ``sim_name`` (where the file stores it): at the stored step nearest
+    each of ``machs`` (within 0.03), in the boost and in the coast, our CA at
+    OpenRocket's Mach and Reynolds numbers (its Reynolds number is on the rocket's
+    length).  Rows (phase, Mach, ours, OpenRocket's, (our friction, pressure, base),
+    (its friction, pressure, base)); none when the file stores no flight data."""
+    import warnings
+
+    import numpy as np
+
+    from ironbark_opt import load_setup
+    from ironbark_opt.aero.table import AeroTable
+    from ironbark_opt.openrocket import read_ork
+    data = read_ork(ork).flight_data(sim_name)
+    if data is None or "ca" not in data:
+        return []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        setup = load_setup(ork, table=table_csv, config=sim_name)
+    aero, table = setup.aero, AeroTable.load(table_csv)
+    data = data[np.isfinite(data["ca"]) & (data["time_s"] > 0.1)]
+    assert abs(float(data["reference_area_m2"].iloc[0]) / aero.reference_area - 1) < 1e-3
+    rows = []
+    for phase, part in (("boost", data[data["thrust_n"] > 0]), ("coast", data[data["thrust_n"] <= 0])):
+        for m in machs:
+            near = part[(part["mach"] - m).abs() < 0.03]
+            if near.empty:
+                continue
+            r = near.iloc[int((near["mach"] - m).abs().argmin())]
+            mach, re_m = float(r["mach"]), float(r["reynolds"]) / setup.body_length
+            ours = float(aero.axial(mach, 0.0, re_m, phase == "boost"))
+            friction = float(aero.friction.CA(mach, re_m))
+            pressure = float(table.evaluate("CA_pressure", mach, 0.0))
+            rows.append((phase, mach, ours, float(r["ca"]), (friction, pressure, ours - friction - pressure),
+                         (float(r["cd_friction"]), float(r["cd_pressure"]), float(r["cd_base"]))))
+    return rows
