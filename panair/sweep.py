@@ -352,14 +352,16 @@ def _local_inclination(panels, mach, alphas, sref, lref, xref):
     return mach, _without_fin_suction(panels, res, sref, solver), [], None, "local-inclination"
 
 
-def _fin_axial_force(panels, results, sref: float) -> np.ndarray:
+def _fin_axial_force(panels, results, sref: float, integrated=None) -> np.ndarray:
     """Axial pressure force coefficient [-] (on ``sref`` [m^2]) of the fin panels
-    (:meth:`PanelSet.fin_mask`, integrated ones) in each of ``results`` (their ``cp``
-    per panel; a panel a solver left out is NaN there and counts 0)."""
+    (:meth:`PanelSet.fin_mask`) the solver puts in the forces, ``integrated`` ((n,) bool,
+    the solver's own mask; default ``panels.integrate``: the supersonic solver leaves the
+    fin tip caps out), in each of ``results`` (their ``cp`` per panel; a panel a solver
+    left out is NaN there and counts 0)."""
     from .solver.pressure import integrate_forces
     _, cen, nrm, area = panels.geometry()
     nrm = panels.force_normals(nrm)
-    sel = panels.integrate & panels.fin_mask()
+    sel = (panels.integrate if integrated is None else integrated) & panels.fin_mask()
     return np.array([integrate_forces(np.nan_to_num(np.asarray(r.cp, float)[sel]), cen[sel],
                                       nrm[sel], area[sel], sref=sref, lref=1.0, xref=0.0,
                                       symmetric=panels.symmetric)["CA"] for r in results])
@@ -373,7 +375,7 @@ def _without_fin_suction(panels, results, sref: float, solver) -> np.ndarray:
     if not len(results):
         return rows
     ref = results[0] if abs(results[0].alpha) < 1e-12 else solver.solve(0.0)[0]
-    fin = _fin_axial_force(panels, list(results) + [ref], sref)
+    fin = _fin_axial_force(panels, list(results) + [ref], sref, getattr(solver, "integrated", None))
     rows[:, 0] -= fin[:-1] - fin[-1]
     return rows
 
@@ -446,7 +448,7 @@ class _Checkpoint:
 
 
 #: bump when the solver's numbers change, so old checkpoints are not reused
-CHECKPOINT_VERSION = 7
+CHECKPOINT_VERSION = 8
 
 
 def sweep_pressure(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: float,

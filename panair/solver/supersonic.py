@@ -843,6 +843,9 @@ class SupersonicSolver:
         closure = _pointed_tip_closure(panels, keep, fins)
         caps = _tip_caps(panels, keep, fins) | closure
         self._caps, self._closure = caps, closure
+        #: (n,) bool: the panels whose pressure is in the forces (kept, tip caps left out)
+        self.integrated = keep.copy()
+        self.integrated[np.flatnonzero(keep)[caps]] = False
         # leading-edge panels where linear theory's pressure is singular (sonic edge):
         # integrable, their load is the theory's leading-edge load (accepted up to
         # CAP_CP_MAX, see solve)
