@@ -90,13 +90,20 @@ class BodyGeometry:
         technical documentation, 2013, eq. 3.88: gamma = length / (fore diameter -
         aft diameter) < 1) calls fully separated: such a transition carries base
         pressure on its annulus (:func:`ironbark_opt.aero.empirical_drag.
-        boattail_separation_fraction`, the criterion the subsonic table uses)."""
+        boattail_separation_fraction`, the criterion the subsonic table uses).  An abrupt
+        step down (two stations at one x: a wide tube on a narrow one without a
+        transition) is such a run of length 0 (gamma 0): until session 22 it was left out,
+        meshed as an attached steep cone over one panel strip and its annulus given no
+        drag (a 157 -> 133 mm step, tests/odd_rockets.py seed 10 without its reducer:
+        zero-lift pressure + base CA 0.098 -> 0.136 at Mach 0.35, 0.221 -> 0.248 at
+        Mach 2; CN-alpha at Mach 2 8.16 -> 8.53 /rad, the attached cone's negative
+        lift gone)."""
         from ironbark_opt.aero.empirical_drag import boattail_separation_fraction
         x, r = self.x, self.r
         out, i, n = [], 0, len(x)
         while i < n - 1:
             j = i                                   # the contracting run from station i
-            while j < n - 1 and x[j + 1] > x[j] and r[j + 1] < r[j]:
+            while j < n - 1 and x[j + 1] >= x[j] and r[j + 1] < r[j]:
                 j += 1
             run = SimpleNamespace(fore_radius=float(r[i]), aft_radius=float(r[j]), length=float(x[j] - x[i]))
             if j > i and boattail_separation_fraction(run) >= 1.0:
@@ -582,6 +589,12 @@ def _axial_stations(body: BodyGeometry, fins, opt: MeshOptions):
     sloped[:-1] |= np.abs(slope) > 1e-6
     sloped[1:] |= np.abs(slope) > 1e-6
     breaks += [xx for xx in x[sloped][::4] if xx > x_nose]
+    # an abrupt step down (two stations at one x) closed by a 45 deg strip ahead of it,
+    # its own length: with the body's spacing it began up to a calibre ahead, and the
+    # supersonic meshes, which leave it out as separated (BodyGeometry.
+    # separated_transitions), left out the body beside fin roots ending there
+    down = np.nonzero((np.diff(x) <= 0) & (np.diff(r) < 0))[0]
+    breaks += [x[i] - (r[i] - r[i + 1]) for i in down if x[i] - (r[i] - r[i + 1]) > x_nose]
     for f in fins:
         breaks += [f.x_root, f.x_root + f.root_chord]
         c = f.root_chord
@@ -695,6 +708,8 @@ def mesh_rocket(geom: RocketGeometry, *, symmetric: bool = False,
         # Mach cone or expanding past vacuum, has no solution at all
         on = np.zeros(len(xc), bool)
         for x0, x1, _, _ in body.separated_transitions():
+            if x1 <= x0:      # an abrupt step: meshed on the strip ahead of it (_axial_stations)
+                x0 = float(xs[xs < x1].max())
             on |= (xc > x0) & (xc < x1)
         sep_mask = np.broadcast_to(on[None, :], no_force.shape) & ~no_force
         if sep_mask.any():

@@ -21,3 +21,32 @@ def barrowman_cna_cp(rocket, mach: float, fins_only_from: float | None = None,
              if fins_only_from is None or c.x_cp > fins_only_from]
     cna = sum(n for n, _ in pairs)
     return cna, sum(n * x for n, x in pairs) / cna
+
+
+def planar_wake_cna_cp(rocket, mach: float) -> tuple[float, float]:
+    """(CN-alpha [1/rad], CP [m]) as :func:`barrowman_cna_cp` with carry-over, but each
+    fin set (a canard) with a set behind it in line (a fin at the same roll angle)
+    reaching at least as far out gives its lift back on that set: slender-body theory
+    with a flat wake, where a configuration's lift is that of its aft-most cross section
+    (R. T. Jones, NACA Rep. 835, 1946; J. N. Nielsen, Missile Aerodynamics, 1960, ch. 7,
+    wing-tail interference).  The canard's lift and the tail's loss make a pure couple,
+    so the CP moves forward with CN-alpha as without the canard: the other bound, next
+    to Barrowman's no interference, of what linear potential flow gives."""
+    from ironbark_opt.rocket.rocket import _share_a_fin_line
+    geo = lift_geometry(rocket)
+    comps = geo.components(mach, rocket.reference_area())
+    nb = len(geo.bodies)
+    pairs = [(float(c.cn_alpha), float(c.x_cp)) for c in comps[:nb]]
+    sets = rocket.fin_sets()
+    for k, (c, f, fs) in enumerate(zip(comps[nb:], geo.fins, sets)):
+        n = float(c.cn_alpha) * (barrowman.slender_body_interference(f.planform.span, f.body_radius)
+                                 / barrowman.interference_factor(f.planform.span, f.body_radius))
+        pairs.append((n, float(c.x_cp)))
+        behind = [(j, g) for j, (g, gs) in enumerate(zip(geo.fins, sets)) if gs.x > fs.x_end
+                  and _share_a_fin_line(fs, gs)
+                  and g.body_radius + g.planform.span >= f.body_radius + f.planform.span - 1e-9]
+        if behind:
+            j, _ = min(behind, key=lambda p: sets[p[0]].x)
+            pairs.append((-n, float(comps[nb + j].x_cp)))
+    cna = sum(n for n, _ in pairs)
+    return cna, sum(n * x for n, x in pairs) / cna

@@ -23,9 +23,10 @@ NOSES = ("conical", "tangent_ogive", "secant_ogive", "elliptical", "parabolic", 
 SECTIONS = ("square", "rounded", "airfoil", "double_wedge")
 
 
-def _nose(r: random.Random, radius: float) -> tuple[str, float]:
+def _nose(r: random.Random, radius: float, calibres: tuple[float, float] = (2.5, 6.0)) -> tuple[str, float]:
+    """A nose cone's TOML text and its length [m]: any shape, ``calibres`` long."""
     shape = r.choice(NOSES)
-    length = r.uniform(2.5, 6.0) * 2 * radius
+    length = r.uniform(*calibres) * 2 * radius
     extra = ""
     if shape == "power":
         extra = f"shape_parameter = {r.choice([0.33, 0.5, 0.75])}\n"

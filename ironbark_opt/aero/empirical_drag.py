@@ -95,7 +95,8 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True,
     rocket's reference area vs Mach (numeric-only): a flat forward face (eq. 3.87),
     blunt nose joints (eq. 3.81),
     boattails and other contracting transitions as separated flow with
-    base-like pressure on the annulus (eq. 3.88), fin leading edges (eq. 3.87,
+    base-like pressure on the annulus (eq. 3.88; an abrupt step down between two
+    components as one of length 0, a step up as a flat forward face), fin leading edges (eq. 3.87,
     3.89).  Fin trailing edges are base drag (:class:`~ironbark_opt.aero.base_drag.BaseDrag`).
 
     ``streamlined_edges=False`` leaves out the leading-edge drag of streamlined
@@ -122,6 +123,16 @@ def separated_pressure_ca(rocket, mach, streamlined_edges: bool = True,
         elif isinstance(comp, Transition) and comp.aft_radius < comp.fore_radius:
             ca += boattail_separation_fraction(comp) * np.asarray(cd_base(m), dtype=float) \
                 * np.pi * (comp.fore_radius ** 2 - comp.aft_radius ** 2) / a_ref
+    body = sorted(rocket.body_components(), key=lambda c: c.x)
+    for a, b in zip(body[:-1], body[1:]):
+        # an abrupt step between two components (no transition): a step down is a
+        # contracting transition of length 0, fully separated (eq. 3.88, gamma 0 < 1),
+        # base pressure on its annulus; a step up a flat forward face (eq. 3.87)
+        step = b.fore_radius - a.aft_radius
+        if abs(step) <= 1e-9 * a.aft_radius:                 # a joint, rounding apart
+            continue
+        annulus = np.pi * abs(a.aft_radius ** 2 - b.fore_radius ** 2) / a_ref
+        ca += (np.asarray(cd_base(m), dtype=float) if step < 0 else 0.85 * q) * annulus
     for fins in rocket.fin_sets():
         edge = fins.section.leading_edge_kind
         if not streamlined_edges and edge != "square":
