@@ -41,13 +41,11 @@ deg) 0.557 there against 0.336 at Mach 1.5 (13.2 % per 0.1 Mach); 2 mm shorter (
 """
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
 from barrowman_reference import barrowman_cna_cp, planar_wake_cna_cp
+from built_table import build_generated
 from odd_rockets import LAYOUTS, odd_rocket
 
 #: step_down (reducer), step_down (abrupt), canards (3, between the fins), many_fins (8),
@@ -67,31 +65,14 @@ def _linear(t, name):
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", SEEDS)
 def test_odd_rocket_builds_and_agrees_with_barrowman(seed, tmp_path):
-    from ironbark_opt.aero.table import AeroTable
-    from ironbark_opt.cli import main
-    from ironbark_opt.vehicle import load_rocket_geometry
-    path = tmp_path / f"odd{seed}.toml"
-    path.write_text(odd_rocket(seed))
-    res = CliRunner().invoke(main, ["aero", "build", str(path), "--out", str(tmp_path / "t"), "--no-progress",
-                                    "--no-resume", "--json"])
-    assert res.exit_code == 0, res.output
-    out = json.loads(res.stdout)
-    t = AeroTable.load(out["table_csv"])
-    rk, _ = load_rocket_geometry(path)
-    d = 2 * rk.reference_radius()
-    ia = int(np.argmin(np.abs(np.degrees(t.alpha) - 2.0)))
-    cn = t.values("CN")[:, ia]
-    i3 = int(np.argmin(np.abs(t.mach - 0.3)))
+    b = build_generated(odd_rocket(seed), tmp_path, f"odd{seed}")
+    t, rk, d, ia, i3, cn, ca0, steps, md = (b.table, b.rocket, b.d, b.ia, b.i3, b.cn, b.ca0, b.steps,
+                                            b.table.metadata)
     cna_lin, cma_lin = _linear(t, "CN"), _linear(t, "Cm")
     cna = float(cna_lin[i3])
     x_cp = float(-cma_lin[i3] / cna * t.reference_length + t.moment_reference_x)
     refs = [barrowman_cna_cp(rk, float(t.mach[i3]), carryover=True), planar_wake_cna_cp(rk, float(t.mach[i3]))]
     (cna_ref, x_ref), (cna_wake, x_wake) = refs
-    ca0 = t.values("CA_pressure")[:, 0] + t.values("CA_base")[:, 0]
-    md = t.metadata
-    sup = np.nonzero((t.mach > 1.0) & ~np.isin(t.mach, md["mach_bridged"]))[0]     # solved ones
-    steps = (np.abs(cn[sup[1:]] / cn[sup[:-1]] - 1.0) / (np.diff(t.mach[sup]) / 0.1)
-             if len(sup) > 1 else np.zeros(0))
     print(f"\nodd{seed} ({LAYOUTS[seed % len(LAYOUTS)]}): Mach {t.mach[0]:g}-{t.mach[-1]:g}; CN-alpha at Mach 0.3 "
           f"{cna:.2f} /rad (CN(2 deg)/sin {cn[i3] / np.sin(t.alpha[ia]):.2f}; Barrowman {cna_ref:.2f}, "
           f"{100 * (cna / cna_ref - 1):+.1f} %; flat wake {cna_wake:.2f}), CP {(x_cp - x_ref) / d:+.2f} cal "

@@ -29,13 +29,11 @@ builds, about 10-25 s each on an idle machine).
 """
 from __future__ import annotations
 
-import json
-
 import numpy as np
 import pytest
-from click.testing import CliRunner
 
 from barrowman_reference import barrowman_cna_cp
+from built_table import build_generated
 from random_rockets import random_rocket
 
 SEEDS = (6, 8, 9, 16, 23, 24, 37, 45, 49)
@@ -44,30 +42,11 @@ SEEDS = (6, 8, 9, 16, 23, 24, 37, 45, 49)
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", SEEDS)
 def test_random_rocket_builds_and_agrees_with_barrowman(seed, tmp_path):
-    from ironbark_opt.aero.table import AeroTable
-    from ironbark_opt.cli import main
-    from ironbark_opt.vehicle import load_rocket_geometry
-    path = tmp_path / f"random{seed}.toml"
-    path.write_text(random_rocket(seed))
-    res = CliRunner().invoke(main, ["aero", "build", str(path), "--out", str(tmp_path / "t"), "--no-progress",
-                                    "--no-resume", "--json"])
-    assert res.exit_code == 0, res.output
-    out = json.loads(res.stdout)
-    t = AeroTable.load(out["table_csv"])
-    rk, _ = load_rocket_geometry(path)
-    d = 2 * rk.reference_radius()
-    ia = int(np.argmin(np.abs(np.degrees(t.alpha) - 2.0)))
-    cn = t.values("CN")[:, ia]
+    b = build_generated(random_rocket(seed), tmp_path, f"random{seed}")
+    t, d, ia, i3, cn, ca0, steps, md = b.table, b.d, b.ia, b.i3, b.cn, b.ca0, b.steps, b.table.metadata
     x_cp = -t.values("Cm")[:, ia] / cn * t.reference_length + t.moment_reference_x
-    i3 = int(np.argmin(np.abs(t.mach - 0.3)))
-    cna_ref, x_ref = barrowman_cna_cp(rk, float(t.mach[i3]), carryover=True)
+    cna_ref, x_ref = barrowman_cna_cp(b.rocket, float(t.mach[i3]), carryover=True)
     cna = cn[i3] / np.sin(t.alpha[ia])
-    ca0 = t.values("CA_pressure")[:, 0] + t.values("CA_base")[:, 0]
-    md = t.metadata
-    sup = np.nonzero((t.mach > 1.0) & ~np.isin(t.mach, md["mach_bridged"]))[0]     # solved ones
-    # relative change of CN per 0.1 of Mach number between neighbouring grid points
-    steps = (np.abs(cn[sup[1:]] / cn[sup[:-1]] - 1.0) / (np.diff(t.mach[sup]) / 0.1)
-             if len(sup) > 1 else np.zeros(0))
     print(f"\nrandom{seed}: Mach {t.mach[0]:g}-{t.mach[-1]:g}; CN-alpha(2 deg) at Mach 0.3 {cna:.2f} /rad "
           f"(reference {cna_ref:.2f}, {100 * (cna / cna_ref - 1):+.1f} %), CP {(x_cp[i3] - x_ref) / d:+.2f} cal; "
           f"min pressure + base CA0 {ca0.min():+.3f}; supersonic CN(2 deg) change per 0.1 Mach "
