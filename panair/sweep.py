@@ -352,16 +352,16 @@ def _local_inclination(panels, mach, alphas, sref, lref, xref):
     return mach, _without_fin_suction(panels, res, sref, solver), [], None, "local-inclination"
 
 
-def _fin_axial_force(panels, results, sref: float, integrated=None) -> np.ndarray:
+def _fin_axial_force(panels, results, sref: float, integrated: np.ndarray) -> np.ndarray:
     """Axial pressure force coefficient [-] (on ``sref`` [m^2]) of the fin panels
     (:meth:`PanelSet.fin_mask`) the solver puts in the forces, ``integrated`` ((n,) bool,
-    the solver's own mask; default ``panels.integrate``: the supersonic solver leaves the
-    fin tip caps out), in each of ``results`` (their ``cp`` per panel; a panel a solver
-    left out is NaN there and counts 0)."""
+    the solver's own ``integrated``: the supersonic solver leaves the fin tip caps out), in
+    each of ``results`` (their ``cp`` per panel; a panel a solver left out is NaN there
+    and counts 0)."""
     from .solver.pressure import integrate_forces
     _, cen, nrm, area = panels.geometry()
     nrm = panels.force_normals(nrm)
-    sel = (panels.integrate if integrated is None else integrated) & panels.fin_mask()
+    sel = integrated & panels.fin_mask()
     return np.array([integrate_forces(np.nan_to_num(np.asarray(r.cp, float)[sel]), cen[sel],
                                       nrm[sel], area[sel], sref=sref, lref=1.0, xref=0.0,
                                       symmetric=panels.symmetric)["CA"] for r in results])
@@ -375,7 +375,7 @@ def _without_fin_suction(panels, results, sref: float, solver) -> np.ndarray:
     if not len(results):
         return rows
     ref = results[0] if abs(results[0].alpha) < 1e-12 else solver.solve(0.0)[0]
-    fin = _fin_axial_force(panels, list(results) + [ref], sref, getattr(solver, "integrated", None))
+    fin = _fin_axial_force(panels, list(results) + [ref], sref, solver.integrated)
     rows[:, 0] -= fin[:-1] - fin[-1]
     return rows
 
@@ -830,8 +830,6 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
                          "supersonic_share_ca": share, "supersonic_share_mach": float(m_sup[0])}
     p0 = zero_lift_pressure(mach, m_cr, sub_fn, m_sup, p_sup, lock_sets=lock_sets, nose=nose_model)
     ca_p = p0[:, None] + d_ca
-    n_a = len(alpha)
-    ones = np.ones((1, n_a))
     includes = ["pressure"]
     ca_f = np.zeros(len(mach))
     if friction is not None:
@@ -859,8 +857,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
         cn_p = _extend_alpha(cn_p, alpha, ext, "CN")
         cm_p = _extend_alpha(cm_p, alpha, ext, "Cm")
         alpha = np.concatenate([alpha, ext])
-        n_a = len(alpha)
-        ones = np.ones((1, n_a))
+    n_a = len(alpha)
     cn_x = np.zeros((len(mach), n_a))
     cm_x = np.zeros((len(mach), n_a))
     fineness = body_fineness(geometry.body)
@@ -874,7 +871,7 @@ def build_table(geometry: RocketGeometry, mach, alpha, *, sref: float, lref: flo
     # friction and base have no incidence model of their own: Jorgensen's cos^2 alpha
     # (NASA TR R-474 eq. 2), as the flight applies to friction kept out of the table
     jorg = axial_factor(alpha)[None, :]
-    f_in = ca_f[:, None] * jorg if friction_in_table else 0.0 * ones
+    f_in = ca_f[:, None] * jorg if friction_in_table else 0.0
     table = {"CA": ca_p + f_in + ca_b[:, None] * jorg,
              "CA_power_on": ca_p + f_in + ca_b_on[:, None] * jorg,
              "CN": cn_p + cn_x, "Cm": cm_p + cm_x, "CA_pressure": ca_p,

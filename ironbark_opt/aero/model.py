@@ -382,9 +382,8 @@ def guide_drag(rocket, roughness: float = 60e-6) -> tuple[tuple, tuple[str, ...]
             size, assumed = c.button_size()
             out.append(RailButtonDrag(c.stations(), name=c.name, **size))
         elif isinstance(c, LaunchLug):
-            for i in range(c.count):            # each lug in its own boundary layer
-                out.append(LaunchLugDrag(c.x + i * c.separation + 0.5 * c.length, c.length,
-                                         c.outer_radius, c.inner_radius,
+            for x in c.fronts:                  # each lug in its own boundary layer
+                out.append(LaunchLugDrag(x + 0.5 * c.length, c.length, c.outer_radius, c.inner_radius,
                                          roughness=_bore_roughness(roughness, c), name=c.name))
     return tuple(out), assumed
 

@@ -101,8 +101,10 @@ class Transition(BodyOfRevolution):
 
     def _solve_clip(self, small: float, large: float) -> float:
         """The clip length c [m] at which the nose shape of radius ``large`` and length
-        c + length has the radius ``small``: bisection, as OpenRocket's ``calculateClip``
-        (the shape's radius rises with c; the bracket doubles from ``length``)."""
+        c + length has the radius ``small``, as OpenRocket's ``calculateClip`` (the shape's
+        radius rises with c; the bracket doubles from ``length``; Brent's root)."""
+        from scipy.optimize import brentq        # not at import: command start-up
+
         def excess(c):
             return float(shape_radius(self.shape, self.shape_parameter, c, c + self.length, large)) - small
         lo, hi = 0.0, self.length
@@ -110,12 +112,7 @@ class Transition(BodyOfRevolution):
             if excess(hi) > 0.0:
                 break
             lo, hi = hi, 2.0 * hi
-        for _ in range(200):
-            mid = 0.5 * (lo + hi)
-            if hi - lo <= 1e-12 * self.length:
-                break
-            lo, hi = (mid, hi) if excess(mid) < 0.0 else (lo, mid)
-        return 0.5 * (lo + hi)
+        return float(brentq(excess, lo, hi, xtol=1e-12 * self.length))
 
     def _local_radius(self, local):
         r1, r2 = self.fore_radius, self.aft_radius

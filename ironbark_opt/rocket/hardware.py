@@ -230,9 +230,14 @@ class LaunchLug:
                              f"their length {self.length} m", field="separation")
 
     @property
+    def fronts(self) -> tuple[float, ...]:
+        """Front end of each lug [m], aft of the nose tip."""
+        return tuple(self.x + i * self.separation for i in range(self.count))
+
+    @property
     def x_end(self) -> float:
         """Aft end of the last lug [m]."""
-        return self.x + (self.count - 1) * self.separation + self.length
+        return self.fronts[-1] + self.length
 
     @property
     def rail_guides(self) -> tuple[float, float]:
@@ -249,9 +254,8 @@ class LaunchLug:
             return MassProperties(0.0, self.x, np.zeros((3, 3)))
         ro, ri, L = self.outer_radius, self.inner_radius, self.length
         m = self.density * np.pi * (ro * ro - ri * ri) * L
-        return combine_properties([MassProperties.axisymmetric(m, self.x + i * self.separation + 0.5 * L,
-                                                               m * L * L / 12.0, 0.0)
-                                   for i in range(self.count)])
+        return combine_properties([MassProperties.axisymmetric(m, x + 0.5 * L, m * L * L / 12.0, 0.0)
+                                   for x in self.fronts])
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -99,6 +99,8 @@ class LocalInclinationSolver:
 
     def __init__(self, panels, mach: float, *, sref: float, lref: float, xref: float = 0.0):
         self.panels, self.mach = panels, float(mach)
+        #: (n,) bool: the panels whose pressure is in the forces
+        self.integrated = panels.integrate
         self.sref, self.lref, self.xref = float(sref), float(lref), float(xref)
         _, self._cen, nrm, self._area = panels.geometry(1.0)
         self._nrm = nrm
@@ -111,7 +113,7 @@ class LocalInclinationSolver:
     def solve(self, alpha, beta=0.0) -> list[InclinationResult]:
         """Pressure forces at the angles ``alpha`` [rad] (zero sideslip)."""
         out = []
-        sel = self.panels.integrate
+        sel = self.integrated
         for a in np.atleast_1d(np.asarray(alpha, float)):
             v = np.array([np.cos(a), 0.0, np.sin(a)])
             delta = np.arcsin(np.clip(-(self._nrm @ v), -1.0, 1.0))

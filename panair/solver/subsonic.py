@@ -193,6 +193,8 @@ class SubsonicSolver:
         if sref <= 0 or lref <= 0:
             raise InputError("sref and lref must be positive", field="sref/lref")
         self.panels = panels
+        #: (n,) bool: the panels whose pressure is in the forces
+        self.integrated = panels.integrate
         self.mach = float(mach)
         self.beta_pg = np.sqrt(1.0 - mach**2)
         self.sref, self.lref, self.xref = float(sref), float(lref), float(xref)
@@ -301,7 +303,7 @@ class SubsonicSolver:
                                   f"singular surface pressure (|Cp| up to {cp_abs:.3g} > "
                                   f"{CP_MAX:g}): degenerate panels (a body or fin of almost zero "
                                   "size somewhere) make the panel equations singular")
-            sel = self.panels.integrate
+            sel = self.integrated
             c = integrate_forces(cp[sel], self._cen[sel], self._nrm_f[sel], self._area[sel],
                                  sref=self.sref, lref=self.lref, xref=self.xref,
                                  symmetric=self.panels.symmetric)
