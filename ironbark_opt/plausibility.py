@@ -47,6 +47,9 @@ MIN_MARGIN_CAL = 1.0              # [cal] warn below (Barrowman rule of thumb)
 #: rail exit (the Spaceport America Cup's rule is 100 ft/s, 30.5 m/s)
 MIN_RAIL_EXIT_SPEED_MPS = 15.0
 MAX_SITE_ELEVATION_M = 9000.0     # [m] above the highest ground on Earth (8849 m)
+#: [m] a motor mass placed outside the motor is refused only when it moves the loaded
+#: motor's CG by more than this (a 1 mm CG shift is 0.01 calibre on a 100 mm rocket)
+NEGLIGIBLE_CG_SHIFT_M = 1e-3
 
 
 class PlausibilityWarning(UserWarning):
@@ -160,11 +163,17 @@ def check_motor(motor, file_motor, spec, body_length: float, *, source=None) -> 
             _warn(f"{fld}propellant_mass: {m_p:.4g} kg differs from the motor file's "
                   f"{file_motor.propellant_mass_initial:.4g} kg by {100 * (ratio - 1):+.0f} %")
     length = getattr(motor, "length", None)
-    for name in ("dry_cg", "propellant_cg"):
-        if name == "dry_cg" and float(getattr(motor, "dry_mass", 1.0)) == 0.0:
-            continue                  # no casing mass (counted in the rocket): its CG is unused
+    m_dry = float(getattr(motor, "dry_mass", 0.0) or 0.0)
+    for name, mass in (("dry_cg", m_dry), ("propellant_cg", m_p)):
         val = getattr(motor, name, None)
-        if val is not None and length and not -0.1 * length <= float(val) <= 1.1 * length:
+        if val is None or not length:
+            continue
+        lo, hi = -0.1 * length, 1.1 * length
+        outside = max(lo - float(val), float(val) - hi, 0.0)
+        # a mass whose misplacement moves the loaded motor's CG by less than
+        # NEGLIGIBLE_CG_SHIFT_M changes no number the flight reports (a casing
+        # counted in the rocket, given as 0 or 1e-6 kg, as RocketPy conversions do)
+        if outside > 0.0 and mass * outside / (m_dry + m_p) > NEGLIGIBLE_CG_SHIFT_M:
             raise InputError(f"{name} = {float(val):g} m is outside the motor (0 to {length:.4g} m "
                              f"forward of the nozzle exit)", source=source, field=fld + name)
     di = getattr(motor, "dry_inertia", None)
