@@ -162,6 +162,8 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
         raise InputError("a rocket file with [[stage]] tables flies through load_setup (a staged setup)",
                          source=rf.source, field="stage")
     motor = load_motor_for(rf.motor)
+    # the exhaust fills the nozzle exit whether or not the thrust is corrected for altitude
+    jet, jet_source = jet_area_of(motor)
     if not pressure_correction and motor.nozzle_exit_area is not None:
         motor = dataclasses.replace(motor, nozzle_exit_area=None)
     rocket = rf.dry_rocket(motor)
@@ -169,7 +171,6 @@ def setup_from_file(rf, *, rail_exit: str = "forward_button", atmosphere=None,
     file_motor = motor.curve if rf.motor.kind != "solid" else read_motor_file(rf.motor)
     check_rocket_file(rf, rocket, motor, file_motor)
     table = load_aero_table(rf.aero, rocket)
-    jet, jet_source = jet_area_of(motor)
     aero = build_aero_model(rocket, table=table, surface_roughness=rf.aero.surface_roughness,
                             re_transition=rf.aero.re_transition, jet_area=jet,
                             jet_area_source=jet_source)

@@ -1,0 +1,40 @@
+"""The power-on base relief takes the nozzle exit area when the file gives one, also
+when the thrust's ambient-pressure correction is switched off (before: switching the
+correction off also dropped the exit area from the base relief, which then fell back
+to the motor's cross-section: 1.29 times the area for Calisto's 75 mm motor and 33 mm
+nozzle exit radius).  Calisto on the empirical aerodynamics (no drag curves)."""
+import math
+import shutil
+from pathlib import Path
+
+import pytest
+
+from ironbark_opt import load_setup
+
+CALISTO = Path(__file__).resolve().parents[2] / "examples" / "calisto"
+EXIT_AREA = math.pi * 0.033 ** 2          # [m^2] the example's commented exit area
+
+
+@pytest.fixture()
+def calisto_with_exit(tmp_path):
+    text = (CALISTO / "calisto.toml").read_text()
+    text = text.replace("# nozzle_exit_area = 0.00342119439976", f"nozzle_exit_area = {EXIT_AREA!r}")
+    # the empirical aerodynamics (its own base drag; the team's curves already hold theirs)
+    text = text.replace('drag_power_off = "powerOffDragCurve.csv"\ndrag_power_on = "powerOnDragCurve.csv"\n', "")
+    for f in CALISTO.iterdir():
+        if f.suffix in (".eng", ".csv"):
+            shutil.copy(f, tmp_path / f.name)
+    path = tmp_path / "calisto.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("correction", [True, False])
+def test_relief_is_the_nozzle_exit_with_or_without_the_thrust_correction(calisto_with_exit, correction):
+    setup = load_setup(calisto_with_exit, pressure_correction=correction)
+    assert setup.aero.jet_area_source == "nozzle exit area"
+    # the thrust correction follows the switch
+    assert (setup.motor.nozzle_exit_area is not None) == correction
+    base = setup.aero.base
+    print(f"correction {correction}: jet area {base.jet_area:.6e} m^2 (exit {EXIT_AREA:.6e})")
+    assert base.jet_area == pytest.approx(EXIT_AREA, rel=1e-12)
