@@ -208,12 +208,16 @@ def _read_cd_curves(path, names, duplicates, want_power_on):
         raise InputError(f"a drag curve needs at least 2 rows (Mach, Cd), found {data.shape[0]}",
                          source=path, line=lines[0] if lines else None, field="mach")
     # a plain (mach, cd) table is typed in Mach order: a step back is a typo.  Files with a
-    # header may be exported time series (OpenRocket: Mach rises and falls) and are sorted.
-    back = np.flatnonzero(np.diff(data[:, im]) < 0) if header is None else np.array([], int)
+    # header may be exported time series (OpenRocket: Mach rises and falls) and are sorted,
+    # and so is a plain table whose Mach never rises (a descending one: hedy's coast-phase
+    # power-off curve, RocketPy's docs/examples data/rockets/hedy, runs Mach 1.748 down to 0.157).
+    steps = np.diff(data[:, im])
+    descending = header is None and not np.any(steps > 0)
+    back = np.flatnonzero(steps < 0) if header is None and not descending else np.array([], int)
     if back.size:
         i = int(back[0]) + 1
-        raise InputError(f"Mach must increase down the file: {data[i, im]:g} follows {data[i - 1, im]:g}",
-                         source=path, line=lines[i], field="mach")
+        raise InputError(f"Mach must increase down the file (or decrease throughout): {data[i, im]:g} "
+                         f"follows {data[i - 1, im]:g}", source=path, line=lines[i], field="mach")
     for ic in icols.values():
         field = header[ic] if header else "cd"
         # Cd of a whole rocket: 0.2-1.5 typical (Hoerner, Fluid-Dynamic Drag); over 5 is not a rocket

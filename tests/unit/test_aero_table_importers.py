@@ -63,6 +63,29 @@ def test_repeated_mach_values(tmp_path):
     assert t.evaluate("CA", m0, 0.0) == pytest.approx(raw[raw[:, 0] == m0, 1].mean())
 
 
+def test_descending_headerless_curve_is_sorted_and_a_step_back_refused(tmp_path):
+    # hedy's team power-off curve (RocketPy docs/examples data) runs Mach 1.748 down to 0.157:
+    # read as the same curve in ascending order; a single step back stays a typo
+    down, up = tmp_path / "down.csv", tmp_path / "up.csv"
+    rows = [(1.748, 0.364), (1.2, 0.52), (1.2, 0.52), (0.9, 0.41), (0.157, 0.44)]
+    down.write_text("".join(f"{m},{c}\n" for m, c in rows))
+    up.write_text("".join(f"{m},{c}\n" for m, c in sorted(set(rows))))
+    t_down, t_up = from_cd_mach_csv(down, **REF), from_cd_mach_csv(up, **REF)
+    np.testing.assert_array_equal(t_down.mach, [0.157, 0.9, 1.2, 1.748])
+    np.testing.assert_allclose(t_down.values("CA").ravel(), [0.44, 0.41, 0.52, 0.364], atol=1e-15)
+    np.testing.assert_allclose(t_down.evaluate("CA", 1.0, 0.0), t_up.evaluate("CA", 1.0, 0.0), atol=1e-15)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("0.1,0.5\n0.3,0.6\n0.2,0.55\n0.4,0.7\n")
+    with pytest.raises(InputError, match="0.2 follows 0.3") as err:
+        from_cd_mach_csv(bad, **REF)
+    assert err.value.line == 3
+    dup = tmp_path / "dup_down.csv"      # conflicting repeats follow drag_duplicates as before
+    dup.write_text("0.9,0.41\n0.163,0.437\n0.163,0.438\n")
+    with pytest.raises(InputError, match="Mach 0.163 appears on lines 2 and 3"):
+        from_cd_mach_csv(dup, **REF)
+    assert from_cd_mach_csv(dup, duplicates="mean", **REF).evaluate("CA", 0.163, 0.0) == pytest.approx(0.4375)
+
+
 def test_different_mach_ranges_are_held_and_warned(tmp_path):
     off, on = tmp_path / "off.csv", tmp_path / "on.csv"
     off.write_text("0.1,0.50\n0.3,0.52\n0.5,0.55\n0.7,0.60\n0.9,0.70\n")
