@@ -161,14 +161,16 @@ def _merge_sorted(mach, values, lines, path, duplicates, field):
         while j + 1 < mach.size and mach[j + 1] == mach[i]:
             j += 1
         group = values[i:j + 1]
-        if np.ptp(group) > 1e-12 * max(1.0, np.max(np.abs(group))):
+        tol = 1e-12 * max(1.0, np.max(np.abs(group)))
+        if np.ptp(group) > tol:
             if duplicates == "error":
+                k = int(np.argmax(np.abs(group - group[0]) > tol))   # the first row that differs
                 raise InputError(f"Mach {mach[i]:.10g} appears on lines {lines[i]} and "
-                                 f"{lines[i + 1]} with different values {group[0]:.10g} and "
-                                 f"{group[1]:.10g}; to average repeated Mach values set "
+                                 f"{lines[i + k]} with different values {group[0]:.10g} and "
+                                 f"{group[k]:.10g}; to average repeated Mach values set "
                                  f"drag_duplicates = \"mean\" in the rocket file's [aero] "
                                  f"(Python: duplicates='mean')",
-                                 source=path, line=lines[i + 1], field=field)
+                                 source=path, line=lines[i + k], field=field)
         out_m.append(mach[i])
         out_v.append(float(np.mean(group)))
         i = j + 1

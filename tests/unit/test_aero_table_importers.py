@@ -54,9 +54,10 @@ def test_repeated_mach_values(tmp_path):
     p.write_text("0.1,0.5\n0.2,0.6\n0.2,0.6\n0.3,0.7\n")
     t = from_cd_mach_csv(p, **REF)  # equal repeats are merged
     np.testing.assert_allclose(t.mach, [0.1, 0.2, 0.3])
-    with pytest.raises(InputError, match="Mach 0.011 appears on lines 1 and 2") as err:
+    # lines 1-5 all read 0.708, line 6 0.707: the first row that differs is named
+    with pytest.raises(InputError, match="Mach 0.011 appears on lines 1 and 6 with different values 0.708 and 0.707") as err:
         from_cd_mach_csv(DATA / "cavour_power_on.csv", **REF)
-    assert err.value.line == 2 and "duplicates='mean'" in str(err.value) and 'drag_duplicates = "mean"' in str(err.value)
+    assert err.value.line == 6 and "duplicates='mean'" in str(err.value) and 'drag_duplicates = "mean"' in str(err.value)
     t = from_cd_mach_csv(DATA / "cavour_power_on.csv", duplicates="mean", **REF)
     raw = np.loadtxt(DATA / "cavour_power_on.csv", delimiter=",")
     m0 = raw[0, 0]
@@ -84,6 +85,17 @@ def test_descending_headerless_curve_is_sorted_and_a_step_back_refused(tmp_path)
     with pytest.raises(InputError, match="Mach 0.163 appears on lines 2 and 3"):
         from_cd_mach_csv(dup, **REF)
     assert from_cd_mach_csv(dup, duplicates="mean", **REF).evaluate("CA", 0.163, 0.0) == pytest.approx(0.4375)
+
+
+def test_repeated_mach_error_names_the_row_that_differs(tmp_path):
+    # hedy's curve repeats Mach 0.158 three times, 0.439, 0.439, 0.44: the message named the two
+    # equal rows ("different values 0.439 and 0.439"); it names the first one that differs
+    p = tmp_path / "three.csv"
+    p.write_text("0.1,0.5\n0.158,0.439\n0.158,0.439\n0.158,0.44\n")
+    with pytest.raises(InputError, match="lines 2 and 4 with different values 0.439 and 0.44;") as err:
+        from_cd_mach_csv(p, **REF)
+    assert err.value.line == 4
+    assert from_cd_mach_csv(p, duplicates="mean", **REF).evaluate("CA", 0.158, 0.0) == pytest.approx(1.318 / 3)
 
 
 def test_different_mach_ranges_are_held_and_warned(tmp_path):
