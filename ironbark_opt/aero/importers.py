@@ -213,13 +213,23 @@ def _read_cd_curves(path, names, duplicates, want_power_on):
     # header may be exported time series (OpenRocket: Mach rises and falls) and are sorted,
     # and so is a plain table whose Mach never rises (a descending one: hedy's coast-phase
     # power-off curve, RocketPy's docs/examples data/rockets/hedy, runs Mach 1.748 down to 0.157).
+    # A step back that only repeats rows already read (same Mach, same values) is no typo
+    # either: the Space Enterprise at Berkeley curve (RocketPy docs/examples
+    # data/rockets/berkeley/drag.csv) is one Mach 0.01..25 curve written out three times.
     steps = np.diff(data[:, im])
     descending = header is None and not np.any(steps > 0)
     back = np.flatnonzero(steps < 0) if header is None and not descending else np.array([], int)
     if back.size:
-        i = int(back[0]) + 1
-        raise InputError(f"Mach must increase down the file (or decrease throughout): {data[i, im]:g} "
-                         f"follows {data[i - 1, im]:g}", source=path, line=lines[i], field="mach")
+        first = {}                                   # Mach -> its first row
+        for k in range(data.shape[0]):
+            first.setdefault(float(data[k, im]), k)
+        top = np.maximum.accumulate(data[:, im])
+        for k in range(1, data.shape[0]):
+            j = first[float(data[k, im])]
+            if data[k, im] < top[k - 1] and not (j < k and np.array_equal(data[k], data[j])):
+                raise InputError(f"Mach must increase down the file (or decrease throughout): "
+                                 f"{data[k, im]:g} follows {data[k - 1, im]:g}", source=path,
+                                 line=lines[k], field="mach")
     for ic in icols.values():
         field = header[ic] if header else "cd"
         # Cd of a whole rocket: 0.2-1.5 typical (Hoerner, Fluid-Dynamic Drag); over 5 is not a rocket

@@ -87,6 +87,26 @@ def test_descending_headerless_curve_is_sorted_and_a_step_back_refused(tmp_path)
     assert from_cd_mach_csv(dup, duplicates="mean", **REF).evaluate("CA", 0.163, 0.0) == pytest.approx(0.4375)
 
 
+def test_a_curve_written_out_twice_reads_as_one_and_a_new_row_after_a_step_back_is_refused(tmp_path):
+    # the Space Enterprise at Berkeley curve (RocketPy docs/examples data) is one Mach 0.01..25
+    # curve written three times: the repeats restate rows already read, so it is that curve
+    rows = "0.01,0.47\n0.5,0.45\n1.2,0.6\n25,0.1\n"
+    twice, once = tmp_path / "twice.csv", tmp_path / "once.csv"
+    twice.write_text(rows + rows + rows.rsplit("25,", 1)[0])
+    once.write_text(rows)
+    t2, t1 = from_cd_mach_csv(twice, **REF), from_cd_mach_csv(once, **REF)
+    np.testing.assert_array_equal(t2.mach, [0.01, 0.5, 1.2, 25])
+    np.testing.assert_array_equal(t2.values("CA"), t1.values("CA"))
+    for text, line, msg in [(rows + "0.5,0.46\n", 5, "0.5 follows 25"),        # restated, other Cd
+                            (rows + "0.7,0.5\n", 5, "0.7 follows 25"),         # a row not read before
+                            ("0.1,0.5\n0.3,0.6\n0.2,0.55\n0.2,0.55\n", 3, "0.2 follows 0.3")]:
+        bad = tmp_path / "bad.csv"
+        bad.write_text(text)
+        with pytest.raises(InputError, match=msg) as err:
+            from_cd_mach_csv(bad, **REF)
+        assert err.value.line == line
+
+
 def test_repeated_mach_error_names_the_row_that_differs(tmp_path):
     # hedy's curve repeats Mach 0.158 three times, 0.439, 0.439, 0.44: the message named the two
     # equal rows ("different values 0.439 and 0.439"); it names the first one that differs
