@@ -40,7 +40,8 @@ def _team_curve_apogee(name, tmp_path):
     text = (DATA / name / "rocket_geometry.toml").read_text()
     text = text.replace('file = "thrust.csv"', f'file = "{(DATA / name / "thrust.csv").as_posix()}"')
     text = text.replace('file = "../../weather/', f'file = "{(DATA.parent / "weather").as_posix()}/')
-    text = text.replace('drag = "drag_airbrakes.csv"', f'drag = "{(DATA / name / "drag_airbrakes.csv").as_posix()}"')
+    brakes = (DATA / name / "drag_airbrakes.csv").as_posix()      # camoes
+    text = text.replace('drag = "drag_airbrakes.csv"', f'drag = "{brakes}"')
     text = text.replace('controller = "airbrake_controller.py:',
                         f'controller = "{(DATA / name / "airbrake_controller.py").as_posix()}:')
     text += ('\n[aero]\ndrag_duplicates = "mean"\n'
