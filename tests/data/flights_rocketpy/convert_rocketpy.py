@@ -45,6 +45,11 @@ SHARED = str(Path(__file__).resolve().parents[4] / "shared")
 
 def resolve(p):
     base = os.path.basename(p)
+    rel = p.split("data/", 1)[1] if "data/" in p else base
+    for d in DATA_DIRS:                    # the notebook's own path first (many rockets share names)
+        for cand in (f"{d}/{rel}", f"{d}/data/{rel}"):
+            if os.path.exists(cand):
+                return cand
     hits = glob.glob(f"{SHARED}/reference/rockets/*/{base}") + glob.glob(f"{SHARED}/fixtures/motors/{base}") \
         + glob.glob(f"{SHARED}/fixtures/weather/reanalysis/{base}")
     for d in DATA_DIRS:
@@ -236,6 +241,9 @@ if mtype == "SolidMotor":
     mo["propellant_mass"] = float(m.propellant_initial_mass)
     cgp = getattr(m, "grains_center_of_mass_position", None)
     mo["propellant_cg"] = float(fwd(cgp))
+elif mtype == "GenericMotor":              # prometheus: thrust, propellant mass and a chamber
+    mo["propellant_mass"] = float(m.propellant_initial_mass)
+    mo["propellant_cg"] = float(fwd(m.chamber_position))
 else:
     liq = m.liquid if mtype == "HybridMotor" else m
     p0, p_ign = float(liq.propellant_mass(0.0)), float(liq.propellant_mass(t_ign))
@@ -262,6 +270,9 @@ else:
 if mtype == "SolidMotor":
     mo["diameter"] = 2 * float(m.grain_outer_radius)
     mo["length"] = float(m.grain_number * m.grain_initial_height + (m.grain_number - 1) * m.grain_separation)
+elif mtype == "GenericMotor":
+    mo["diameter"] = 2 * float(m.chamber_radius)
+    mo["length"] = float(m.chamber_height)
 else:
     mo["diameter"] = 2 * R
     mo["length"] = float(max(abs(float(fwd(pt["position"]))) + pt["tank"].geometry.total_height / 2
