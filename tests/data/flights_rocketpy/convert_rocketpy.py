@@ -365,20 +365,14 @@ text = "\n".join(lines) + "\n"
 open(f"{out_dir}/rocket_geometry.toml", "w").write(text)
 if SHARED_FORM:
     drag = {}
-    from rocketpy import Function
-    for key, inp in (("drag_power_off", rk._power_off_drag_input), ("drag_power_on", rk._power_on_drag_input)):
-        srcd = None
-        if isinstance(inp, str):                 # the team's file's numeric rows, unchanged
-            rows = []
-            for ln in open(inp):
-                try:
-                    rows.append([float(v) for v in ln.replace(";", ",").split(",")[:2]])
-                except ValueError:
-                    continue
-            srcd = np.array(rows)
-        if isinstance(srcd, np.ndarray) and srcd.ndim == 2:
-            np.savetxt(f"{out_dir}/{key}.csv", srcd[:, :2], delimiter=",", fmt="%.6f")
-            drag[key] = f"{key}.csv"
+    # as RocketPy flies them: its Mach function on Mach 0..3 in steps of 0.01 (the form of
+    # ../shared/reference/flights: 301 rows); the team's raw file may repeat, reverse or
+    # fall back in Mach (hedy, Berkeley, andromeda), RocketPy sorts and interpolates it
+    mach = np.round(np.arange(0.0, 3.0 + 1e-9, 0.01), 2)
+    for key, fn in (("drag_power_off", rk.power_off_drag), ("drag_power_on", rk.power_on_drag)):
+        np.savetxt(f"{out_dir}/{key}.csv", np.c_[mach, [float(fn(x)) for x in mach]], delimiter=",",
+                   fmt=("%.4f", "%.6f"))
+        drag[key] = f"{key}.csv"
     if len(drag) == 2:
         open(f"{out_dir}/rocket.toml", "w").write(text + f'\n[aero]\ndrag_power_off = "{drag["drag_power_off"]}"\n'
                                                   f'drag_power_on = "{drag["drag_power_on"]}"\n')
