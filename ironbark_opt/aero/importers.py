@@ -161,14 +161,16 @@ def _merge_sorted(mach, values, lines, path, duplicates, field):
         while j + 1 < mach.size and mach[j + 1] == mach[i]:
             j += 1
         group = values[i:j + 1]
-        if np.ptp(group) > 1e-12 * max(1.0, np.max(np.abs(group))):
+        tol = 1e-12 * max(1.0, np.max(np.abs(group)))
+        if np.ptp(group) > tol:
             if duplicates == "error":
+                k = int(np.argmax(np.abs(group - group[0]) > tol))   # the first row that differs
                 raise InputError(f"Mach {mach[i]:.10g} appears on lines {lines[i]} and "
-                                 f"{lines[i + 1]} with different values {group[0]:.10g} and "
-                                 f"{group[1]:.10g}; to average repeated Mach values set "
+                                 f"{lines[i + k]} with different values {group[0]:.10g} and "
+                                 f"{group[k]:.10g}; to average repeated Mach values set "
                                  f"drag_duplicates = \"mean\" in the rocket file's [aero] "
                                  f"(Python: duplicates='mean')",
-                                 source=path, line=lines[i + 1], field=field)
+                                 source=path, line=lines[i + k], field=field)
         out_m.append(mach[i])
         out_v.append(float(np.mean(group)))
         i = j + 1
@@ -208,12 +210,26 @@ def _read_cd_curves(path, names, duplicates, want_power_on):
         raise InputError(f"a drag curve needs at least 2 rows (Mach, Cd), found {data.shape[0]}",
                          source=path, line=lines[0] if lines else None, field="mach")
     # a plain (mach, cd) table is typed in Mach order: a step back is a typo.  Files with a
-    # header may be exported time series (OpenRocket: Mach rises and falls) and are sorted.
-    back = np.flatnonzero(np.diff(data[:, im]) < 0) if header is None else np.array([], int)
+    # header may be exported time series (OpenRocket: Mach rises and falls) and are sorted,
+    # and so is a plain table whose Mach never rises (a descending one: hedy's coast-phase
+    # power-off curve, RocketPy's docs/examples data/rockets/hedy, runs Mach 1.748 down to 0.157).
+    # A step back that only repeats rows already read (same Mach, same values) is no typo
+    # either: the Space Enterprise at Berkeley curve (RocketPy docs/examples
+    # data/rockets/berkeley/drag.csv) is one Mach 0.01..25 curve written out three times.
+    steps = np.diff(data[:, im])
+    descending = header is None and not np.any(steps > 0)
+    back = np.flatnonzero(steps < 0) if header is None and not descending else np.array([], int)
     if back.size:
-        i = int(back[0]) + 1
-        raise InputError(f"Mach must increase down the file: {data[i, im]:g} follows {data[i - 1, im]:g}",
-                         source=path, line=lines[i], field="mach")
+        first = {}                                   # Mach -> its first row
+        for k in range(data.shape[0]):
+            first.setdefault(float(data[k, im]), k)
+        top = np.maximum.accumulate(data[:, im])
+        for k in range(1, data.shape[0]):
+            j = first[float(data[k, im])]
+            if data[k, im] < top[k - 1] and not (j < k and np.array_equal(data[k], data[j])):
+                raise InputError(f"Mach must increase down the file (or decrease throughout): "
+                                 f"{data[k, im]:g} follows {data[k - 1, im]:g}", source=path,
+                                 line=lines[k], field="mach")
     for ic in icols.values():
         field = header[ic] if header else "cd"
         # Cd of a whole rocket: 0.2-1.5 typical (Hoerner, Fluid-Dynamic Drag); over 5 is not a rocket

@@ -208,8 +208,11 @@ def _header_fields(src, n, toks) -> dict:
         if val < 0 or (val == 0 and field != "propellant_kg"):   # read even when overridden
             raise InputError(f"{field} must be {'>= 0' if field == 'propellant_kg' else '> 0'}, got {val:g}",
                              source=src, line=n, field=field)
-    if mt <= mp:
-        raise InputError(f"total mass {mt} kg must exceed propellant mass {mp} kg",
+    # equal masses: a dry mass of 0 (the casing counted in the rocket's mass, as the rocket
+    # TOML's dry_mass = 0 allows; a RocketPy case converted with dry mass 1e-06 kg and 6
+    # decimals in the header rounds to it: juno3, 8.169384 and 8.169384)
+    if mt < mp:
+        raise InputError(f"total mass {mt} kg must be at least the propellant mass {mp} kg",
                          source=src, line=n, field="total_kg")
     return dict(designation=toks[0], manufacturer=" ".join(toks[6:]),
                 delays=parse_delays(toks[3], source=src, line=n),

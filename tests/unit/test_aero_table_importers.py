@@ -54,13 +54,70 @@ def test_repeated_mach_values(tmp_path):
     p.write_text("0.1,0.5\n0.2,0.6\n0.2,0.6\n0.3,0.7\n")
     t = from_cd_mach_csv(p, **REF)  # equal repeats are merged
     np.testing.assert_allclose(t.mach, [0.1, 0.2, 0.3])
-    with pytest.raises(InputError, match="Mach 0.011 appears on lines 1 and 2") as err:
+    # lines 1-5 all read 0.708, line 6 0.707: the first row that differs is named
+    with pytest.raises(InputError,
+                       match="Mach 0.011 appears on lines 1 and 6 with different values 0.708 and 0.707") as err:
         from_cd_mach_csv(DATA / "cavour_power_on.csv", **REF)
-    assert err.value.line == 2 and "duplicates='mean'" in str(err.value) and 'drag_duplicates = "mean"' in str(err.value)
+    assert err.value.line == 6 and "duplicates='mean'" in str(err.value) and 'drag_duplicates = "mean"' in str(err.value)
     t = from_cd_mach_csv(DATA / "cavour_power_on.csv", duplicates="mean", **REF)
     raw = np.loadtxt(DATA / "cavour_power_on.csv", delimiter=",")
     m0 = raw[0, 0]
     assert t.evaluate("CA", m0, 0.0) == pytest.approx(raw[raw[:, 0] == m0, 1].mean())
+
+
+def test_descending_headerless_curve_is_sorted_and_a_step_back_refused(tmp_path):
+    # hedy's team power-off curve (RocketPy docs/examples data) runs Mach 1.748 down to 0.157:
+    # read as the same curve in ascending order; a single step back stays a typo
+    down, up = tmp_path / "down.csv", tmp_path / "up.csv"
+    rows = [(1.748, 0.364), (1.2, 0.52), (1.2, 0.52), (0.9, 0.41), (0.157, 0.44)]
+    down.write_text("".join(f"{m},{c}\n" for m, c in rows))
+    up.write_text("".join(f"{m},{c}\n" for m, c in sorted(set(rows))))
+    t_down, t_up = from_cd_mach_csv(down, **REF), from_cd_mach_csv(up, **REF)
+    np.testing.assert_array_equal(t_down.mach, [0.157, 0.9, 1.2, 1.748])
+    np.testing.assert_allclose(t_down.values("CA").ravel(), [0.44, 0.41, 0.52, 0.364], atol=1e-15)
+    np.testing.assert_allclose(t_down.evaluate("CA", 1.0, 0.0), t_up.evaluate("CA", 1.0, 0.0), atol=1e-15)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("0.1,0.5\n0.3,0.6\n0.2,0.55\n0.4,0.7\n")
+    with pytest.raises(InputError, match="0.2 follows 0.3") as err:
+        from_cd_mach_csv(bad, **REF)
+    assert err.value.line == 3
+    dup = tmp_path / "dup_down.csv"      # conflicting repeats follow drag_duplicates as before
+    dup.write_text("0.9,0.41\n0.163,0.437\n0.163,0.438\n")
+    with pytest.raises(InputError, match="Mach 0.163 appears on lines 2 and 3"):
+        from_cd_mach_csv(dup, **REF)
+    assert from_cd_mach_csv(dup, duplicates="mean", **REF).evaluate("CA", 0.163, 0.0) == pytest.approx(0.4375)
+
+
+def test_a_curve_written_out_twice_reads_as_one_and_a_new_row_after_a_step_back_is_refused(tmp_path):
+    # the Space Enterprise at Berkeley curve (RocketPy docs/examples data) is one Mach 0.01..25
+    # curve written three times: the repeats restate rows already read, so it is that curve
+    rows = "0.01,0.47\n0.5,0.45\n1.2,0.6\n25,0.1\n"
+    twice, once = tmp_path / "twice.csv", tmp_path / "once.csv"
+    twice.write_text(rows + rows + rows.rsplit("25,", 1)[0])
+    once.write_text(rows)
+    t2, t1 = from_cd_mach_csv(twice, **REF), from_cd_mach_csv(once, **REF)
+    np.testing.assert_array_equal(t2.mach, [0.01, 0.5, 1.2, 25])
+    np.testing.assert_array_equal(t2.values("CA"), t1.values("CA"))
+    for text, line, msg in [(rows + "0.5,0.46\n", 5, "0.5 follows 25"),        # restated, other Cd
+                            (rows + "0.7,0.5\n", 5, "0.7 follows 25"),         # a row not read before
+                            ("0.1,0.5\n0.3,0.6\n0.2,0.55\n0.2,0.55\n", 3, "0.2 follows 0.3")]:
+        bad = tmp_path / "bad.csv"
+        bad.write_text(text)
+        with pytest.raises(InputError, match=msg) as err:
+            from_cd_mach_csv(bad, **REF)
+        assert err.value.line == line
+
+
+def test_repeated_mach_error_names_the_row_that_differs(tmp_path):
+    # hedy's curve repeats Mach 0.158 three times, 0.439, 0.439, 0.44: the message named the two
+    # equal rows ("different values 0.439 and 0.439"); it names the first one that differs
+    p = tmp_path / "three.csv"
+    p.write_text("0.1,0.5\n0.158,0.439\n0.158,0.439\n0.158,0.44\n")
+    with pytest.raises(InputError, match="lines 2 and 4 with different values 0.439 and 0.44;") as err:
+        from_cd_mach_csv(p, **REF)
+    assert err.value.line == 4
+    mean = from_cd_mach_csv(p, duplicates="mean", **REF)
+    assert mean.evaluate("CA", 0.158, 0.0) == pytest.approx(1.318 / 3)
 
 
 def test_different_mach_ranges_are_held_and_warned(tmp_path):

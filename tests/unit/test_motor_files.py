@@ -139,7 +139,7 @@ BAD_ENG = {
                         "time decreases"),
     "missing_header_fields": ("M1 75 757 0\n0.1 100\n1 0\n", 1, "missing: propellant_kg"),
     "bad_header_number": ("M1 75 long 0 3.1 5.2 CTI\n0.1 100\n1 0\n", 1, "'long'"),
-    "total_below_propellant": ("M1 75 757 0 3.1 2.0 CTI\n0.1 100\n1 0\n", 1, "must exceed"),
+    "total_below_propellant": ("M1 75 757 0 3.1 2.0 CTI\n0.1 100\n1 0\n", 1, "at least the propellant"),
     "bad_delay": ("M1 75 757 4-x 3.1 5.2 CTI\n0.1 100\n1 0\n", 1, "'x'"),
     "negative_thrust": ("M1 75 757 0 3.1 5.2 CTI\n0.1 -100\n1 0\n", 2, "negative thrust"),
     "all_zero": ("M1 75 757 0 3.1 5.2 CTI\n0.1 0\n1 0\n", 1, "zero total impulse"),
