@@ -84,9 +84,9 @@ def test_rocketpy_example_flights_on_tables_from_geometry(tmp_path):
     # (ironbark_opt.aero.protuberance; no button size in these files: OpenRocket's default
     # button assumed, with a warning): cavour -1.66, andromeda +3.30, erebus -7.12, lince
     # +3.12, juno3 -6.07, prometheus -6.76 % (median 4.68 %, max 7.12 %); a regression beyond
-    # it fails; session 13 measured cavour -1.66, andromeda +3.78, erebus -7.08, lince +3.26,
-    # juno3 -6.07, prometheus -6.72 %.  The bound stays on those six; the four added with the converter's hybrid,
-    # liquid, free-form-fin and air-brake support (session 13) measured: valetudo +5.73,
+    # it fails; sessions 13-22 measured cavour -1.66, andromeda +3.78, erebus -7.08, lince +3.26,
+    # juno3 -6.07, prometheus -6.72 % (session 23 too).  The bound stays on those six; the four added with the converter's hybrid,
+    # liquid, free-form-fin and air-brake support (session 23) measured: valetudo +5.73,
     # halcyon -7.18, hedy -11.59 (its team curve, ours: +1.95 %: our skin friction on its
     # l/d 28 body is 0.43 of the 0.55 Cd we fly at Mach 0.6, the team's curve says 0.38 in
     # all), camoes +8.37 % with its air brakes (team curve + brakes, ours: 3006 m against
