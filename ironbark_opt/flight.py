@@ -212,7 +212,13 @@ def _summary(model: FlightModel, run: dict, df: dict) -> dict:
     brakes = getattr(model.setup, "airbrakes", None)
     if brakes is not None:
         dep, tt = df["airbrake_deployment"][flying], df["time_s"][flying]
-        rate = np.diff(dep) / np.maximum(np.diff(tt), 1e-12)
+        if brakes.trigger == "controller":
+            # a controller's deployment is held between sampling instants and changes by
+            # at most rate / f at each (dynamics/controlled.py): its rate is that change
+            # times the sampling rate, not the step over the output's sub-sample spacing
+            rate = np.diff(dep) * float(brakes.sampling_rate)
+        else:
+            rate = np.diff(dep) / np.maximum(np.diff(tt), 1e-12)
         s.update(airbrake_max_deployment=float(dep.max()),
                  airbrake_max_rate_per_s=float(np.abs(rate).max()) if rate.size else 0.0)
         opened = np.nonzero(dep > 1e-6)[0]

@@ -153,6 +153,26 @@ def test_controller_flies_like_the_equivalent_schedule(setup):
         simulate(broken)
 
 
+def test_controller_opening_rate_is_per_sample(setup):
+    """At 10 Hz the coast is flown in two RK4 sub-steps per sample, so the output holds
+    each deployment for two rows: the reported opening rate is the per-sample change x 10 Hz
+    (the 2 /s limit), not that change over the 0.05 s row spacing (was 4 /s, and 20 /s on
+    camoes's 0 -> 1 step at 10 /s)."""
+    brakes = dataclasses.replace(setup.airbrakes, trigger="controller", sampling_rate=10.0,
+                                 controller=load_controller(f"{CONTROLLERS}:open_late"))
+    flight = simulate(dataclasses.replace(setup, airbrakes=brakes))
+    df = flight.to_dataframe()
+    coast = df[df["phase"] == "coast"]
+    spacing = float(np.median(np.diff(coast["time_s"])))
+    steps = np.diff(df["airbrake_deployment"])
+    reported = flight.summary_values["airbrake_max_rate_per_s"]
+    print(f"row spacing {spacing:.4f} s, largest per-sample change {steps.max():.4f}, reported "
+          f"rate {reported:.4f} /s (limit {brakes.rate:g} /s)")
+    assert spacing < 0.1 - 1e-9                      # sub-sampled: the case that was wrong
+    assert steps.max() == pytest.approx(brakes.rate / 10.0, rel=1e-9)
+    assert reported == pytest.approx(brakes.rate, rel=1e-9)
+
+
 def test_batch_flies_each_schedule_like_a_single_run(setup):
     """Monte Carlo's path (run_batch) on dispersed schedules equals one run per sample."""
     model = flight_model(setup)
