@@ -4,29 +4,21 @@ correction off also dropped the exit area from the base relief, which then fell 
 to the motor's cross-section: 1.29 times the area for Calisto's 75 mm motor and 33 mm
 nozzle exit radius).  Calisto on the empirical aerodynamics (no drag curves)."""
 import math
-import shutil
-from pathlib import Path
 
 import pytest
 
 from ironbark_opt import load_setup
+from example_variant import example_variant
 
-CALISTO = Path(__file__).resolve().parents[2] / "examples" / "calisto"
 EXIT_AREA = math.pi * 0.033 ** 2          # [m^2] the example's commented exit area
 
 
 @pytest.fixture()
 def calisto_with_exit(tmp_path):
-    text = (CALISTO / "calisto.toml").read_text()
-    text = text.replace("# nozzle_exit_area = 0.00342119439976", f"nozzle_exit_area = {EXIT_AREA!r}")
     # the empirical aerodynamics (its own base drag; the team's curves already hold theirs)
-    text = text.replace('drag_power_off = "powerOffDragCurve.csv"\ndrag_power_on = "powerOnDragCurve.csv"\n', "")
-    for f in CALISTO.iterdir():
-        if f.suffix in (".eng", ".csv"):
-            shutil.copy(f, tmp_path / f.name)
-    path = tmp_path / "calisto.toml"
-    path.write_text(text)
-    return path
+    return example_variant(tmp_path, "calisto", [
+        ("# nozzle_exit_area = 0.00342119439976", f"nozzle_exit_area = {EXIT_AREA!r}"),
+        ('drag_power_off = "powerOffDragCurve.csv"\ndrag_power_on = "powerOnDragCurve.csv"\n', "")])
 
 
 @pytest.mark.parametrize("correction", [True, False])

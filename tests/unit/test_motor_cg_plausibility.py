@@ -5,27 +5,16 @@ genesis) count the casing in the rocket and give the motor ``dry_mass = 1e-06`` 
 a CG past the motor's end (0.895 m on a 0.37 m motor).  That file was refused (exit 2)
 although the mass moves no number; a real casing at the same place must still be.
 """
-import shutil
-from pathlib import Path
-
 import pytest
 
 from ironbark_opt import load_setup, simulate
 from ironbark_opt.errors import InputError
-
-CALISTO = Path(__file__).resolve().parents[2] / "examples" / "calisto"
+from example_variant import example_variant
 
 
 def _calisto(tmp_path, dry_mass, dry_cg):
-    text = (CALISTO / "calisto.toml").read_text()
-    text = text.replace("dry_mass = 1.815", f"dry_mass = {dry_mass}")
-    text = text.replace("dry_cg = 0.317", f"dry_cg = {dry_cg}")
-    for f in CALISTO.iterdir():
-        if f.suffix in (".eng", ".csv"):
-            shutil.copy(f, tmp_path / f.name)
-    path = tmp_path / "calisto.toml"
-    path.write_text(text)
-    return path
+    return example_variant(tmp_path, "calisto", [("dry_mass = 1.815", f"dry_mass = {dry_mass}"),
+                                                 ("dry_cg = 0.317", f"dry_cg = {dry_cg}")])
 
 
 def test_negligible_casing_mass_outside_the_motor_flies(tmp_path):
