@@ -319,6 +319,33 @@ class EllipticalFins(FinSet):
         return y, dy, 0.5 * (self.root_chord - c), c
 
 
+#: largest dip of the root trailing edge below the root line, x the span, taken on the root
+ROOT_DIP_MAX = 0.25
+
+
+def _outline_in_our_order(pts: np.ndarray) -> np.ndarray:
+    """A fin outline in RocketPy's form (``FreeFormFins`` shape_points: closed, last point
+    = first, running root leading edge -> root trailing edge -> over the tip -> back) as
+    the same polygon in ours (root leading edge, over the tip, root trailing edge last).
+    A root trailing edge below the root line (RocketPy draws a root along a boattail, e.g.
+    hedy's, 12 mm over a 108 mm span) is taken on the root, with a warning, when the dip is
+    at most :data:`ROOT_DIP_MAX` of the span.  Any other outline is returned unchanged (the
+    checks that follow judge it)."""
+    import warnings
+    if len(pts) >= 4 and np.array_equal(pts[-1], pts[0]):
+        pts = pts[:-1]
+    if len(pts) >= 3 and np.all(pts[0] == 0.0) and pts[-1, 1] != 0.0 and pts[1, 1] <= 0.0 < pts[1, 0]:
+        pts = np.vstack([pts[:1], pts[1:][::-1]])
+    span = float(np.max(pts[:, 1]))
+    if pts[-1, 1] < 0.0 and pts[-1, 0] > 0.0 and -pts[-1, 1] <= ROOT_DIP_MAX * span:
+        warnings.warn(f"freeform fins: the root trailing edge {pts[-1].tolist()} lies {-pts[-1, 1]:g} m "
+                      f"below the root line (a root drawn along a boattail); taken on the root "
+                      f"[{pts[-1, 0]:g}, 0]", UserWarning, stacklevel=4)
+        pts = pts.copy()
+        pts[-1, 1] = 0.0
+    return pts
+
+
 @dataclass(frozen=True, kw_only=True)
 class FreeformFins(FinSet):
     """Fins with a polygon planform.
@@ -328,6 +355,8 @@ class FreeformFins(FinSet):
     points : sequence of (xi [m], y [m])
         Outline from the root leading edge (0, 0) over the tip to the root
         trailing edge (c_r, 0); y >= 0; the polygon must not cross itself.
+        RocketPy's closed form (root leading edge, root trailing edge, over the tip,
+        back to (0, 0)) is read as the same polygon (:func:`_outline_in_our_order`).
     Other parameters as in :class:`FinSet`.
     """
 
@@ -343,6 +372,7 @@ class FreeformFins(FinSet):
             raise InputError("points must be at least three [x, y] pairs [m]", field="points")
         if not np.all(np.isfinite(pts)):
             raise InputError("points must be finite numbers", field="points")
+        pts = _outline_in_our_order(pts)
         if np.any(pts[0] != 0.0):
             raise InputError(f"the first point must be the root leading edge [0, 0], got "
                              f"{pts[0].tolist()}", field="points")

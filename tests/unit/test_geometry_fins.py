@@ -84,6 +84,27 @@ def test_freeform_rejects_bad_outlines(points, msg):
     assert err.value.field == "points"
 
 
+
+def test_freeform_reads_rocketpys_closed_outline():
+    """hedy's fins as RocketPy's notebook gives them (docs/examples/hedy_flight_sim.ipynb:
+    closed, root LE -> root TE -> tip -> back, the root TE 12 mm below the root line along
+    the boattail) are the polygon of our order with the root TE on the root, with a warning;
+    the same outline without the dip is read without one."""
+    ours = FreeformFins(count=4, x=0.0, thickness=T,
+                        points=[(0, 0), (0.195, 0.108), (0.25, 0.108), (0.25, 0)])
+    with pytest.warns(UserWarning, match="below the root line"):
+        rocketpy = FreeformFins(count=4, x=0.0, thickness=T,
+                                points=[(0, 0), (0.250, -0.012), (0.250, 0.108), (0.195, 0.108), (0, 0)])
+    assert rocketpy.points == ours.points
+    assert rocketpy.planform_area() == pytest.approx(0.5 * (0.25 + 0.055) * 0.108, rel=1e-12)
+    flat = FreeformFins(count=4, x=0.0, thickness=T,
+                        points=[(0, 0), (0.250, 0.0), (0.250, 0.108), (0.195, 0.108), (0, 0)])
+    assert flat.points == ours.points
+    # a dip of more than a quarter of the span is no boattail root: refused as before
+    with pytest.raises(InputError, match="root trailing edge"):
+        FreeformFins(count=4, x=0.0, thickness=T,
+                     points=[(0, 0), (0.250, -0.03), (0.250, 0.108), (0.195, 0.108), (0, 0)])
+
 def test_sections_area_and_centroid():
     c, t = 0.1, 0.006
     assert FinSection(kind="square").area(c, t) == pytest.approx(c * t)
