@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import abc
 import math
+import warnings
 
 from dataclasses import dataclass, field
 from typing import Callable
@@ -331,7 +332,6 @@ def _outline_in_our_order(pts: np.ndarray) -> np.ndarray:
     hedy's, 12 mm over a 108 mm span) is taken on the root, with a warning, when the dip is
     at most :data:`ROOT_DIP_MAX` of the span.  Any other outline is returned unchanged (the
     checks that follow judge it)."""
-    import warnings
     if len(pts) >= 4 and np.array_equal(pts[-1], pts[0]):
         pts = pts[:-1]
     if len(pts) >= 3 and np.all(pts[0] == 0.0) and pts[-1, 1] != 0.0 and pts[1, 1] <= 0.0 < pts[1, 0]:
