@@ -5,6 +5,14 @@ from ironbark_opt.aero import barrowman
 from ironbark_opt.aero.model import lift_geometry
 
 
+def _carryover(fin) -> float:
+    """K_W(B) + K_B(W) = (1 + r/(s + r))^2 (slender-body theory: Pitts, Nielsen & Kaattari,
+    NACA Rep. 1307) over Barrowman's K_T(B) for the fin set ``fin`` of
+    :func:`~ironbark_opt.aero.model.lift_geometry` [-]."""
+    return (barrowman.slender_body_interference(fin.planform.span, fin.body_radius)
+            / barrowman.interference_factor(fin.planform.span, fin.body_radius))
+
+
 def barrowman_cna_cp(rocket, mach: float, fins_only_from: float | None = None,
                      carryover: bool = False) -> tuple[float, float]:
     """(CN-alpha [1/rad], CP [m]) by Barrowman at ``mach`` [-]; with ``fins_only_from``
@@ -13,10 +21,7 @@ def barrowman_cna_cp(rocket, mach: float, fins_only_from: float | None = None,
     carry-over, slender-body theory: Pitts, Nielsen & Kaattari, NACA Rep. 1307)."""
     geo = lift_geometry(rocket)
     comps = geo.components(mach, rocket.reference_area())
-    scale = [1.0] * len(geo.bodies) + [
-        barrowman.slender_body_interference(f.planform.span, f.body_radius)
-        / barrowman.interference_factor(f.planform.span, f.body_radius) if carryover else 1.0
-        for f in geo.fins]
+    scale = [1.0] * len(geo.bodies) + [_carryover(f) if carryover else 1.0 for f in geo.fins]
     pairs = [(float(c.cn_alpha) * k, float(c.x_cp)) for c, k in zip(comps, scale)
              if fins_only_from is None or c.x_cp > fins_only_from]
     cna = sum(n for n, _ in pairs)
@@ -39,8 +44,7 @@ def planar_wake_cna_cp(rocket, mach: float) -> tuple[float, float]:
     pairs = [(float(c.cn_alpha), float(c.x_cp)) for c in comps[:nb]]
     sets = rocket.fin_sets()
     for k, (c, f, fs) in enumerate(zip(comps[nb:], geo.fins, sets)):
-        n = float(c.cn_alpha) * (barrowman.slender_body_interference(f.planform.span, f.body_radius)
-                                 / barrowman.interference_factor(f.planform.span, f.body_radius))
+        n = float(c.cn_alpha) * _carryover(f)
         pairs.append((n, float(c.x_cp)))
         behind = [(j, g) for j, (g, gs) in enumerate(zip(geo.fins, sets)) if gs.x > fs.x_end
                   and _share_a_fin_line(fs, gs)

@@ -76,13 +76,15 @@ def _beside_team_curve(name, table, max_mach):
     column at the sea-level unit Reynolds number the table is built with; the flight
     evaluates it at its own) with the team's power-off drag curve, at the Mach numbers of
     :data:`MACH_PRINTED` the flight reaches."""
-    curve = np.loadtxt(DATA / name / "drag_power_off.csv", delimiter=",", comments="#")
-    curve = curve[np.argsort(curve[:, 0])]
+    from ironbark_opt.aero.importers import from_cd_mach_csv
+    # the curve as the team-curve flight reads it
+    curve = from_cd_mach_csv(DATA / name / "drag_power_off.csv", reference_area=table.reference_area,
+                             reference_length=table.reference_length)
     parts = ("CA_pressure", "CA_base", "CA_friction")
     lines = []
     for m in (m for m in MACH_PRINTED if m <= max_mach + 0.05):
         p, b, f = (float(table.evaluate(c, m, 0.0)) for c in parts)
-        team = float(np.interp(m, curve[:, 0], curve[:, 1]))
+        team = float(curve.evaluate("CA", m, 0.0))
         lines.append(f"  Mach {m:3.1f}: CA ours {p + b + f:.3f} (pressure {p:+.3f}, base {b:.3f}, "
                      f"friction {f:.3f}), team curve {team:.3f}: {100 * ((p + b + f) / team - 1):+6.1f} %")
     return lines
